@@ -1,0 +1,1 @@
+//! Layer 2: the film (per-pixel accumulators, per-pixel variance) and pixel filters.

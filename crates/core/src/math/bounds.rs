@@ -1,0 +1,133 @@
+//! Axis-aligned bounding boxes.
+
+use glam::Vec3;
+
+/// An axis-aligned box; the empty box has `min > max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds3 {
+    /// Lower corner.
+    pub min: Vec3,
+    /// Upper corner.
+    pub max: Vec3,
+}
+
+impl Default for Bounds3 {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl Bounds3 {
+    /// The empty box, neutral for `union`.
+    pub const EMPTY: Self = Self { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+
+    /// The box holding exactly one point.
+    #[inline]
+    #[must_use]
+    pub fn from_point(p: Vec3) -> Self {
+        Self { min: p, max: p }
+    }
+
+    /// Smallest box holding `self` and `p`.
+    #[inline]
+    #[must_use]
+    pub fn union_point(self, p: Vec3) -> Self {
+        Self { min: self.min.min(p), max: self.max.max(p) }
+    }
+
+    /// Smallest box holding both boxes.
+    #[inline]
+    #[must_use]
+    pub fn union(self, b: Self) -> Self {
+        Self { min: self.min.min(b.min), max: self.max.max(b.max) }
+    }
+
+    /// True for the empty box.
+    #[inline]
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
+    }
+
+    /// Edge lengths.
+    #[inline]
+    #[must_use]
+    pub fn diagonal(&self) -> Vec3 {
+        self.max - self.min
+    }
+
+    /// Centre point.
+    #[inline]
+    #[must_use]
+    pub fn centroid(&self) -> Vec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// Surface area (zero for the empty box).
+    #[inline]
+    #[must_use]
+    pub fn surface_area(&self) -> f32 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        let d = self.diagonal();
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    /// Index of the longest axis.
+    #[inline]
+    #[must_use]
+    pub fn max_extent_axis(&self) -> usize {
+        let d = self.diagonal();
+        if d.x > d.y && d.x > d.z {
+            0
+        } else if d.y > d.z {
+            1
+        } else {
+            2
+        }
+    }
+
+    /// Position of `p` relative to the box: 0 at `min`, 1 at `max`, per axis.
+    #[inline]
+    #[must_use]
+    pub fn offset(&self, p: Vec3) -> Vec3 {
+        let mut o = p - self.min;
+        let d = self.diagonal();
+        for i in 0..3 {
+            if d[i] > 0.0 {
+                o[i] /= d[i];
+            }
+        }
+        o
+    }
+
+    /// True when `p` lies inside or on the box.
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, p: Vec3) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
+
+    /// True when `b` lies inside or on the box.
+    #[inline]
+    #[must_use]
+    pub fn contains_box(&self, b: &Self) -> bool {
+        self.contains(b.min) && self.contains(b.max)
+    }
+
+    /// Slab test of a ray against the box within `(0, t_max)`, given the precomputed
+    /// reciprocal direction. The far distance is scaled by `1 + 2 gamma(3)` so rounding
+    /// cannot make a ray miss a box it touches (pbrt-v4 `Bounds3::IntersectP`).
+    #[inline]
+    #[must_use]
+    pub fn hit(&self, o: Vec3, inv_d: Vec3, t_max: f32) -> bool {
+        let t0 = (self.min - o) * inv_d;
+        let t1 = (self.max - o) * inv_d;
+        let t_near = t0.min(t1);
+        let t_far = t0.max(t1) * (1.0 + 2.0 * super::gamma(3));
+        let t_enter = t_near.max_element().max(0.0);
+        let t_exit = t_far.min_element().min(t_max);
+        t_enter <= t_exit
+    }
+}

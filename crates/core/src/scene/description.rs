@@ -1,0 +1,206 @@
+//! The plain scene description that loaders produce and [`super::Scene::build`] consumes.
+//!
+//! Everything here is already resolved: transforms are matrices, named materials are indices,
+//! meshes are in world space. No strings, files or parsing state reach the core.
+
+use crate::color::Rgb;
+use crate::math::{Transform, Vec2, Vec3};
+
+/// Index into [`SceneDescription::materials`].
+pub type MaterialId = u32;
+
+/// A whole scene: what to render and how.
+#[derive(Clone, Debug)]
+pub struct SceneDescription {
+    /// The camera.
+    pub camera: CameraDesc,
+    /// Image size.
+    pub film: FilmDesc,
+    /// Pixel reconstruction filter.
+    pub filter: FilterDesc,
+    /// Sample generator and sample count.
+    pub sampler: SamplerDesc,
+    /// Light transport algorithm.
+    pub integrator: IntegratorDesc,
+    /// Materials, referred to by shapes through [`MaterialId`].
+    pub materials: Vec<MaterialDesc>,
+    /// Geometry.
+    pub shapes: Vec<ShapeDesc>,
+    /// Lights that are not attached to shapes (point lights, ...).
+    pub lights: Vec<LightDesc>,
+}
+
+/// A pinhole or thin-lens perspective camera (pbrt `Camera "perspective"`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraDesc {
+    /// World-from-camera transform. Camera space is pbrt's: +x right in the image, +y up,
+    /// looking down +z.
+    pub world_from_camera: Transform,
+    /// Full field of view in degrees, spanning the shorter image axis.
+    pub fov_degrees: f32,
+    /// Lens radius (0 = pinhole).
+    pub lens_radius: f32,
+    /// Distance to the plane in focus (used when `lens_radius > 0`).
+    pub focal_distance: f32,
+    /// Screen window `[x_min, x_max, y_min, y_max]`; `None` = pbrt's default from the aspect
+    /// ratio.
+    pub screen_window: Option<[f32; 4]>,
+}
+
+impl Default for CameraDesc {
+    fn default() -> Self {
+        Self { world_from_camera: Transform::IDENTITY, fov_degrees: 90.0, lens_radius: 0.0, focal_distance: 1e6, screen_window: None }
+    }
+}
+
+/// Image size in pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FilmDesc {
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+}
+
+impl Default for FilmDesc {
+    fn default() -> Self {
+        Self { width: 1280, height: 720 }
+    }
+}
+
+/// Pixel reconstruction filter; radii are in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterDesc {
+    /// Constant over `[-r, r]^2`.
+    Box {
+        /// Radius per axis.
+        radius: Vec2,
+    },
+    /// Separable tent `max(0, r - |x|)`.
+    Triangle {
+        /// Radius per axis.
+        radius: Vec2,
+    },
+    /// Separable Gaussian minus its value at the radius (pbrt-v4's `gaussian`).
+    Gaussian {
+        /// Radius per axis.
+        radius: Vec2,
+        /// Standard deviation in pixels.
+        sigma: f32,
+    },
+}
+
+impl Default for FilterDesc {
+    fn default() -> Self {
+        Self::Gaussian { radius: Vec2::splat(1.5), sigma: 0.5 }
+    }
+}
+
+/// Which sample generator to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerKind {
+    /// Independent uniform random numbers from a PCG stream.
+    Independent,
+}
+
+/// Sampler settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SamplerDesc {
+    /// The generator.
+    pub kind: SamplerKind,
+    /// Samples per pixel.
+    pub samples_per_pixel: u32,
+    /// Seed; together with pixel and sample index it fixes every random number.
+    pub seed: u64,
+}
+
+impl Default for SamplerDesc {
+    fn default() -> Self {
+        Self { kind: SamplerKind::Independent, samples_per_pixel: 16, seed: 0 }
+    }
+}
+
+/// Integrator settings (pbrt `Integrator "path"`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntegratorDesc {
+    /// Maximum number of scattering events: 0 = emission only, 1 = direct lighting, ...
+    pub max_depth: u32,
+}
+
+impl Default for IntegratorDesc {
+    fn default() -> Self {
+        Self { max_depth: 5 }
+    }
+}
+
+/// A material.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialDesc {
+    /// Lambertian reflection (pbrt `diffuse`), reflecting on both sides.
+    Diffuse {
+        /// Albedo in [0, 1].
+        reflectance: Rgb,
+    },
+}
+
+/// The emission of an area light attached to a shape (pbrt `AreaLightSource "diffuse"`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLightDesc {
+    /// Emitted radiance, with pbrt's `scale` already applied.
+    pub radiance: Rgb,
+    /// Emit on both sides instead of only on the side the surface normal points to.
+    pub two_sided: bool,
+}
+
+/// One shape with its material and optional emission.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeDesc {
+    /// The geometry.
+    pub geometry: GeometryDesc,
+    /// Its material.
+    pub material: MaterialId,
+    /// Emission, if the shape is an area light.
+    pub area_light: Option<AreaLightDesc>,
+    /// Flip the surface normal: pbrt's `ReverseOrientation` xor "the transform swaps
+    /// handedness". Decides on which side a one-sided area light emits.
+    pub flip_normals: bool,
+}
+
+/// Geometry of a shape.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GeometryDesc {
+    /// A triangle mesh, already transformed to world space.
+    TriangleMesh(TriangleMeshDesc),
+    /// A full sphere of `radius` around the origin of its object space.
+    Sphere {
+        /// Radius.
+        radius: f32,
+        /// World-from-object transform.
+        world_from_object: Transform,
+    },
+}
+
+/// A triangle mesh in world space.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleMeshDesc {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Three vertex indices per triangle.
+    pub indices: Vec<u32>,
+    /// Optional per-vertex shading normals (world space, same length as `positions`).
+    pub normals: Option<Vec<Vec3>>,
+    /// Optional per-vertex texture coordinates.
+    pub uvs: Option<Vec<Vec2>>,
+}
+
+/// A light that is not a shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightDesc {
+    /// An isotropic point light (pbrt `point`).
+    Point {
+        /// World position.
+        position: Vec3,
+        /// Radiant intensity (W/sr per channel), `scale` already applied.
+        intensity: Rgb,
+    },
+}
