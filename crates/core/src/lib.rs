@@ -6,8 +6,16 @@
 //! factor; all directional pdfs are per unit solid angle; `wo` and `wi` point away from the
 //! surface.
 
+pub mod accel;
+pub mod bsdf;
+pub mod camera;
 pub mod color;
 pub mod film;
+pub mod integrator;
+pub mod light;
+pub mod material;
 pub mod math;
+pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod shape;

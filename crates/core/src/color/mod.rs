@@ -10,6 +10,8 @@ pub fn linear_to_srgb(v: f32) -> f32 {
     let v = v.clamp(0.0, 1.0);
     if v <= 0.003_130_8 {
         12.92 * v
+    } else if v >= 1.0 {
+        1.0
     } else {
         1.055 * v.powf(1.0 / 2.4) - 0.055
     }

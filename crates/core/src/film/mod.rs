@@ -1,1 +1,7 @@
 //! Layer 2: the film (per-pixel accumulators, per-pixel variance) and pixel filters.
+
+mod accumulator;
+mod filter;
+
+pub use accumulator::{Film, PixelStats};
+pub use filter::{Filter, FilterSample};

@@ -19,7 +19,10 @@ impl Default for Bounds3 {
 
 impl Bounds3 {
     /// The empty box, neutral for `union`.
-    pub const EMPTY: Self = Self { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+    pub const EMPTY: Self = Self {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
 
     /// The box holding exactly one point.
     #[inline]
@@ -32,14 +35,20 @@ impl Bounds3 {
     #[inline]
     #[must_use]
     pub fn union_point(self, p: Vec3) -> Self {
-        Self { min: self.min.min(p), max: self.max.max(p) }
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
     }
 
     /// Smallest box holding both boxes.
     #[inline]
     #[must_use]
     pub fn union(self, b: Self) -> Self {
-        Self { min: self.min.min(b.min), max: self.max.max(b.max) }
+        Self {
+            min: self.min.min(b.min),
+            max: self.max.max(b.max),
+        }
     }
 
     /// True for the empty box.

@@ -19,7 +19,10 @@ impl Default for Transform {
 
 impl Transform {
     /// The identity.
-    pub const IDENTITY: Self = Self { m: Mat4::IDENTITY, m_inv: Mat4::IDENTITY };
+    pub const IDENTITY: Self = Self {
+        m: Mat4::IDENTITY,
+        m_inv: Mat4::IDENTITY,
+    };
 
     /// A transform from a matrix; `None` when the matrix is singular or not finite.
     #[must_use]
@@ -28,19 +31,28 @@ impl Transform {
         if !det.is_finite() || det == 0.0 || !m.is_finite() {
             return None;
         }
-        Some(Self { m, m_inv: m.inverse() })
+        Some(Self {
+            m,
+            m_inv: m.inverse(),
+        })
     }
 
     /// The inverse transform.
     #[must_use]
     pub fn inverse(&self) -> Self {
-        Self { m: self.m_inv, m_inv: self.m }
+        Self {
+            m: self.m_inv,
+            m_inv: self.m,
+        }
     }
 
     /// Composition: `self` applied after `t`.
     #[must_use]
     pub fn compose(&self, t: &Self) -> Self {
-        Self { m: self.m * t.m, m_inv: t.m_inv * self.m_inv }
+        Self {
+            m: self.m * t.m,
+            m_inv: t.m_inv * self.m_inv,
+        }
     }
 
     /// Transform a point (with the projective divide).

@@ -49,7 +49,13 @@ pub struct CameraDesc {
 
 impl Default for CameraDesc {
     fn default() -> Self {
-        Self { world_from_camera: Transform::IDENTITY, fov_degrees: 90.0, lens_radius: 0.0, focal_distance: 1e6, screen_window: None }
+        Self {
+            world_from_camera: Transform::IDENTITY,
+            fov_degrees: 90.0,
+            lens_radius: 0.0,
+            focal_distance: 1e6,
+            screen_window: None,
+        }
     }
 }
 
@@ -64,7 +70,10 @@ pub struct FilmDesc {
 
 impl Default for FilmDesc {
     fn default() -> Self {
-        Self { width: 1280, height: 720 }
+        Self {
+            width: 1280,
+            height: 720,
+        }
     }
 }
 
@@ -92,7 +101,10 @@ pub enum FilterDesc {
 
 impl Default for FilterDesc {
     fn default() -> Self {
-        Self::Gaussian { radius: Vec2::splat(1.5), sigma: 0.5 }
+        Self::Gaussian {
+            radius: Vec2::splat(1.5),
+            sigma: 0.5,
+        }
     }
 }
 
@@ -116,7 +128,11 @@ pub struct SamplerDesc {
 
 impl Default for SamplerDesc {
     fn default() -> Self {
-        Self { kind: SamplerKind::Independent, samples_per_pixel: 16, seed: 0 }
+        Self {
+            kind: SamplerKind::Independent,
+            samples_per_pixel: 16,
+            seed: 0,
+        }
     }
 }
 

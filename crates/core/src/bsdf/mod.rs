@@ -1,0 +1,137 @@
+//! Layer 2: BSDFs. Lobes ([`Bxdf`]) are written in the local shading frame (z = shading
+//! normal); [`Bsdf`] wraps a lobe with its frame and works on world-space directions.
+//!
+//! Conventions: `f` excludes the cosine factor; pdfs are per unit solid angle; `wo` and `wi`
+//! both point away from the surface.
+
+mod diffuse;
+mod flags;
+
+pub use diffuse::DiffuseBxdf;
+pub use flags::BxdfFlags;
+
+use crate::color::Rgb;
+use crate::math::{Frame, Vec2, Vec3};
+
+/// A sampled direction with its BSDF value and density.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// BSDF value `f(wo, wi)` (no cosine).
+    pub f: Rgb,
+    /// Sampled incident direction (local frame inside a [`Bxdf`], world frame from [`Bsdf`]).
+    pub wi: Vec3,
+    /// Density of `wi` per unit solid angle (for specular lobes, the discrete probability).
+    pub pdf: f32,
+    /// Kind of scattering sampled.
+    pub flags: BxdfFlags,
+}
+
+/// The closed set of lobes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bxdf {
+    /// Lambertian reflection.
+    Diffuse(DiffuseBxdf),
+}
+
+macro_rules! dispatch {
+    ($self:ident, $b:ident => $e:expr) => {
+        match $self {
+            Bxdf::Diffuse($b) => $e,
+        }
+    };
+}
+
+impl Bxdf {
+    /// What kinds of scattering the lobe can do (empty when it is black).
+    #[must_use]
+    pub fn flags(&self) -> BxdfFlags {
+        dispatch!(self, b => b.flags())
+    }
+
+    /// `f(wo, wi)` in the local frame.
+    #[must_use]
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        dispatch!(self, b => b.f(wo, wi))
+    }
+
+    /// Sample `wi` given `wo` (local frame) from two uniform numbers and one more for lobe
+    /// selection.
+    #[must_use]
+    pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+        dispatch!(self, b => b.sample_f(wo, uc, u))
+    }
+
+    /// Density of [`Self::sample_f`] producing `wi`.
+    #[must_use]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        dispatch!(self, b => b.pdf(wo, wi))
+    }
+}
+
+/// A lobe placed in a shading frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bsdf {
+    frame: Frame,
+    bxdf: Bxdf,
+}
+
+impl Bsdf {
+    /// A BSDF with shading normal `ns` and tangent `dpdu`.
+    #[must_use]
+    pub fn new(ns: Vec3, dpdu: Vec3, bxdf: Bxdf) -> Self {
+        Self {
+            frame: Frame::from_zx(ns, dpdu),
+            bxdf,
+        }
+    }
+
+    /// Kinds of scattering.
+    #[must_use]
+    pub fn flags(&self) -> BxdfFlags {
+        self.bxdf.flags()
+    }
+
+    /// `f(wo, wi)` for world-space directions.
+    #[must_use]
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        if wo.z == 0.0 {
+            return Rgb::BLACK;
+        }
+        self.bxdf.f(wo, wi)
+    }
+
+    /// Sample an incident direction (world space) for outgoing `wo`.
+    #[must_use]
+    pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+        let wo = self.frame.to_local(wo);
+        if wo.z == 0.0 || self.bxdf.flags().is_empty() {
+            return None;
+        }
+        let bs = self.bxdf.sample_f(wo, uc, u)?;
+        if bs.f.is_black() || bs.pdf == 0.0 || bs.wi.z == 0.0 || !bs.pdf.is_finite() {
+            return None;
+        }
+        Some(BsdfSample {
+            wi: self.frame.from_local(bs.wi),
+            ..bs
+        })
+    }
+
+    /// Density of [`Self::sample_f`] for world-space directions.
+    #[must_use]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        if wo.z == 0.0 {
+            return 0.0;
+        }
+        self.bxdf.pdf(wo, wi)
+    }
+}
+
+/// True when `a` and `b` (local frame) are on the same side of the surface.
+#[inline]
+#[must_use]
+pub fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}

@@ -1,0 +1,163 @@
+//! Per-pixel accumulation of weighted radiance samples, with the second moments needed to
+//! report the variance of each pixel's estimate.
+//!
+//! Each sample is `(w, L)` with `w` the filter weight (about 1, see [`super::Filter`]). The
+//! pixel value is the weighted mean `sum(w L) / sum(w)`. Its variance is estimated from the
+//! samples' own spread: with `n` samples, `Var[mean] ~= s^2 / n` where `s^2` is the unbiased
+//! sample variance of the `w L / mean(w)` values.
+
+use crate::color::Rgb;
+
+/// Running sums for one pixel, in `f64` so long renders do not lose precision.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelStats {
+    /// Sum of weights.
+    pub sum_w: f64,
+    /// Sum of `w L` per channel.
+    pub sum_wl: [f64; 3],
+    /// Sum of `(w L)^2` per channel.
+    pub sum_wl2: [f64; 3],
+    /// Number of samples.
+    pub count: u64,
+}
+
+impl PixelStats {
+    /// Add one sample of radiance `l` with filter weight `w`.
+    #[inline]
+    pub fn add(&mut self, l: Rgb, w: f32) {
+        let w = f64::from(w);
+        self.sum_w += w;
+        for c in 0..3 {
+            let v = w * f64::from(l[c]);
+            self.sum_wl[c] += v;
+            self.sum_wl2[c] += v * v;
+        }
+        self.count += 1;
+    }
+
+    /// Merge another accumulator (used to resume or combine renders of the same pixel).
+    pub fn merge(&mut self, o: &Self) {
+        self.sum_w += o.sum_w;
+        for c in 0..3 {
+            self.sum_wl[c] += o.sum_wl[c];
+            self.sum_wl2[c] += o.sum_wl2[c];
+        }
+        self.count += o.count;
+    }
+
+    /// The pixel's estimate: weighted mean radiance.
+    #[must_use]
+    pub fn mean(&self) -> Rgb {
+        if self.sum_w == 0.0 {
+            return Rgb::BLACK;
+        }
+        let m = |c: usize| (self.sum_wl[c] / self.sum_w) as f32;
+        Rgb::new(m(0), m(1), m(2))
+    }
+
+    /// Estimated variance of [`Self::mean`] per channel (0 with fewer than two samples).
+    #[must_use]
+    pub fn variance_of_mean(&self) -> Rgb {
+        if self.count < 2 || self.sum_w == 0.0 {
+            return Rgb::BLACK;
+        }
+        let n = self.count as f64;
+        // Normalise by the mean weight so that sum(w L)/sum(w) = mean of x_i = w_i L_i / wbar.
+        let wbar = self.sum_w / n;
+        let v = |c: usize| {
+            let mean_x = self.sum_wl[c] / n / wbar;
+            let mean_x2 = self.sum_wl2[c] / n / (wbar * wbar);
+            let sample_var = (mean_x2 - mean_x * mean_x).max(0.0) * n / (n - 1.0);
+            (sample_var / n) as f32
+        };
+        Rgb::new(v(0), v(1), v(2))
+    }
+}
+
+/// An image of pixel accumulators, row-major with row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    pixels: Vec<PixelStats>,
+}
+
+impl Film {
+    /// An empty film.
+    #[must_use]
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![PixelStats::default(); width as usize * height as usize],
+        }
+    }
+
+    /// Width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The accumulator of pixel `(x, y)`.
+    #[must_use]
+    pub fn pixel(&self, x: u32, y: u32) -> &PixelStats {
+        &self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Mutable accumulator of pixel `(x, y)`.
+    pub fn pixel_mut(&mut self, x: u32, y: u32) -> &mut PixelStats {
+        &mut self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// All accumulators, row-major.
+    #[must_use]
+    pub fn pixels(&self) -> &[PixelStats] {
+        &self.pixels
+    }
+
+    /// The estimate of every pixel.
+    #[must_use]
+    pub fn mean_image(&self) -> Vec<Rgb> {
+        self.pixels.iter().map(PixelStats::mean).collect()
+    }
+
+    /// The variance of every pixel's estimate.
+    #[must_use]
+    pub fn variance_image(&self) -> Vec<Rgb> {
+        self.pixels
+            .iter()
+            .map(PixelStats::variance_of_mean)
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mean_and_variance_of_known_samples() {
+        let mut p = PixelStats::default();
+        for v in [1.0, 2.0, 3.0, 4.0] {
+            p.add(Rgb::splat(v), 1.0);
+        }
+        assert!((p.mean().r - 2.5).abs() < 1e-6);
+        // Sample variance of 1..4 is 5/3; of the mean, 5/12.
+        assert!((p.variance_of_mean().g - 5.0 / 12.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn weights_are_normalised() {
+        let mut p = PixelStats::default();
+        p.add(Rgb::splat(2.0), 0.5);
+        p.add(Rgb::splat(4.0), 1.5);
+        assert!((p.mean().b - 3.5).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,309 @@
+//! Building a [`Scene`] from a [`SceneDescription`]: validation (indices in range, finite
+//! numbers, sane sizes) with errors that say what is wrong, then flattening shapes into
+//! primitives and building the BVH.
+
+use std::sync::Arc;
+
+use super::{GeometryDesc, LightDesc, MaterialDesc, Primitive, Scene, SceneDescription};
+use crate::accel::Bvh;
+use crate::camera::{Camera, PerspectiveCamera};
+use crate::film::Filter;
+use crate::light::{DiffuseAreaLight, Light, PointLight, PowerLightSampler};
+use crate::material::Material;
+use crate::shape::{Shape, Sphere, Triangle, TriangleMesh};
+
+/// Largest image side accepted.
+pub const MAX_RESOLUTION: u32 = 32_768;
+/// Largest pixel count accepted.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+/// Why a description cannot be rendered.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum BuildError {
+    /// A value is out of its valid range or not finite.
+    #[error("invalid {what}: {detail}")]
+    Invalid {
+        /// Which parameter.
+        what: String,
+        /// What was wrong.
+        detail: String,
+    },
+}
+
+fn invalid(what: impl Into<String>, detail: impl Into<String>) -> BuildError {
+    BuildError::Invalid {
+        what: what.into(),
+        detail: detail.into(),
+    }
+}
+
+fn check_finite(what: &str, vals: &[f32]) -> Result<(), BuildError> {
+    match vals.iter().find(|v| !v.is_finite()) {
+        Some(v) => Err(invalid(what, format!("expected finite numbers, found {v}"))),
+        None => Ok(()),
+    }
+}
+
+fn check_non_negative(what: &str, vals: &[f32]) -> Result<(), BuildError> {
+    check_finite(what, vals)?;
+    match vals.iter().find(|v| **v < 0.0) {
+        Some(v) => Err(invalid(
+            what,
+            format!("expected non-negative values, found {v}"),
+        )),
+        None => Ok(()),
+    }
+}
+
+impl SceneDescription {
+    /// Check every value the renderer relies on.
+    pub fn validate(&self) -> Result<(), BuildError> {
+        let (w, h) = (self.film.width, self.film.height);
+        if w == 0
+            || h == 0
+            || w > MAX_RESOLUTION
+            || h > MAX_RESOLUTION
+            || u64::from(w) * u64::from(h) > MAX_PIXELS
+        {
+            return Err(invalid(
+                "resolution",
+                format!("{w}x{h}; expected 1 to {MAX_RESOLUTION} pixels per side and at most {MAX_PIXELS} pixels"),
+            ));
+        }
+        if self.sampler.samples_per_pixel == 0 {
+            return Err(invalid("samples per pixel", "expected at least 1, found 0"));
+        }
+        let c = &self.camera;
+        check_finite("camera transform", &c.world_from_camera.m.to_cols_array())?;
+        if !(c.fov_degrees > 0.0 && c.fov_degrees < 180.0) {
+            return Err(invalid(
+                "camera fov",
+                format!("expected degrees in (0, 180), found {}", c.fov_degrees),
+            ));
+        }
+        check_non_negative("camera lens radius", &[c.lens_radius])?;
+        if c.lens_radius > 0.0 && (c.focal_distance.is_nan() || c.focal_distance <= 0.0) {
+            return Err(invalid(
+                "camera focal distance",
+                format!("expected > 0, found {}", c.focal_distance),
+            ));
+        }
+        match self.filter {
+            super::FilterDesc::Box { radius } | super::FilterDesc::Triangle { radius } => {
+                check_positive_radius(radius.to_array())?;
+            }
+            super::FilterDesc::Gaussian { radius, sigma } => {
+                check_positive_radius(radius.to_array())?;
+                if !(sigma > 0.0 && sigma.is_finite()) {
+                    return Err(invalid(
+                        "filter sigma",
+                        format!("expected > 0, found {sigma}"),
+                    ));
+                }
+            }
+        }
+        for (i, m) in self.materials.iter().enumerate() {
+            match m {
+                MaterialDesc::Diffuse { reflectance } => {
+                    check_non_negative(
+                        &format!("reflectance of material {i}"),
+                        &reflectance.to_array(),
+                    )?;
+                }
+            }
+        }
+        for (i, s) in self.shapes.iter().enumerate() {
+            if s.material as usize >= self.materials.len() {
+                return Err(invalid(
+                    format!("shape {i}"),
+                    format!("material index {} out of range", s.material),
+                ));
+            }
+            if let Some(a) = &s.area_light {
+                check_non_negative(
+                    &format!("emitted radiance of shape {i}"),
+                    &a.radiance.to_array(),
+                )?;
+            }
+            match &s.geometry {
+                GeometryDesc::TriangleMesh(m) => {
+                    let what = format!("triangle mesh (shape {i})");
+                    if m.indices.len() % 3 != 0 {
+                        return Err(invalid(
+                            what,
+                            format!("{} indices is not a multiple of 3", m.indices.len()),
+                        ));
+                    }
+                    if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len())
+                    {
+                        return Err(invalid(
+                            what,
+                            format!(
+                                "vertex index {bad} out of range ({} vertices)",
+                                m.positions.len()
+                            ),
+                        ));
+                    }
+                    check_finite(
+                        &what,
+                        &m.positions
+                            .iter()
+                            .flat_map(|p| p.to_array())
+                            .collect::<Vec<_>>(),
+                    )?;
+                    if let Some(n) = &m.normals {
+                        if n.len() != m.positions.len() {
+                            return Err(invalid(
+                                what,
+                                format!("{} normals for {} vertices", n.len(), m.positions.len()),
+                            ));
+                        }
+                        check_finite(
+                            &what,
+                            &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
+                        )?;
+                    }
+                    if let Some(uv) = &m.uvs {
+                        if uv.len() != m.positions.len() {
+                            return Err(invalid(
+                                what,
+                                format!("{} uvs for {} vertices", uv.len(), m.positions.len()),
+                            ));
+                        }
+                    }
+                }
+                GeometryDesc::Sphere {
+                    radius,
+                    world_from_object,
+                } => {
+                    if !(*radius > 0.0 && radius.is_finite()) {
+                        return Err(invalid(
+                            format!("sphere (shape {i})"),
+                            format!("expected radius > 0, found {radius}"),
+                        ));
+                    }
+                    check_finite("sphere transform", &world_from_object.m.to_cols_array())?;
+                }
+            }
+        }
+        for (i, l) in self.lights.iter().enumerate() {
+            match l {
+                LightDesc::Point {
+                    position,
+                    intensity,
+                } => {
+                    check_finite(&format!("position of light {i}"), &position.to_array())?;
+                    check_non_negative(&format!("intensity of light {i}"), &intensity.to_array())?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
+    if r.iter().all(|v| *v > 0.0 && v.is_finite()) {
+        Ok(())
+    } else {
+        Err(invalid(
+            "filter radius",
+            format!("expected > 0, found {r:?}"),
+        ))
+    }
+}
+
+impl Scene {
+    /// Validate the description and build the scene.
+    pub fn build(desc: &SceneDescription) -> Result<Self, BuildError> {
+        desc.validate()?;
+        let materials = desc
+            .materials
+            .iter()
+            .map(|m| match m {
+                MaterialDesc::Diffuse { reflectance } => Material::Diffuse {
+                    reflectance: *reflectance,
+                },
+            })
+            .collect();
+        let mut primitives = Vec::new();
+        let mut lights = Vec::new();
+        for s in &desc.shapes {
+            let shapes: Vec<Shape> = match &s.geometry {
+                GeometryDesc::TriangleMesh(m) => {
+                    let mesh = Arc::new(TriangleMesh {
+                        positions: m.positions.clone(),
+                        indices: m.indices.clone(),
+                        normals: m
+                            .normals
+                            .as_ref()
+                            .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
+                        uvs: m.uvs.clone(),
+                        flip_normals: s.flip_normals,
+                    });
+                    (0..mesh.triangle_count() as u32)
+                        .map(|index| {
+                            Shape::Triangle(Triangle {
+                                mesh: mesh.clone(),
+                                index,
+                            })
+                        })
+                        .filter(|t| t.area() > 0.0)
+                        .collect()
+                }
+                GeometryDesc::Sphere {
+                    radius,
+                    world_from_object,
+                } => {
+                    vec![Shape::Sphere(Sphere::new(
+                        *radius,
+                        *world_from_object,
+                        s.flip_normals,
+                    ))]
+                }
+            };
+            for shape in shapes {
+                let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
+                    lights.push(Light::DiffuseArea(DiffuseAreaLight {
+                        shape: shape.clone(),
+                        radiance: a.radiance,
+                        two_sided: a.two_sided,
+                    }));
+                    (lights.len() - 1) as u32
+                });
+                primitives.push(Primitive {
+                    shape,
+                    material: s.material,
+                    light,
+                });
+            }
+        }
+        for l in &desc.lights {
+            match *l {
+                LightDesc::Point {
+                    position,
+                    intensity,
+                } => lights.push(Light::Point(PointLight {
+                    position,
+                    intensity,
+                })),
+            }
+        }
+        let bounds: Vec<_> = primitives
+            .iter()
+            .map(|p: &Primitive| p.shape.bounds())
+            .collect();
+        let bvh = Bvh::build(&bounds);
+        Ok(Self {
+            primitives,
+            materials,
+            light_sampler: PowerLightSampler::new(&lights),
+            lights,
+            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film)),
+            filter: Filter::new(&desc.filter),
+            film: desc.film,
+            sampler: desc.sampler,
+            integrator: desc.integrator,
+            bvh,
+        })
+    }
+}

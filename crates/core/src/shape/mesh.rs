@@ -1,0 +1,39 @@
+//! Triangle meshes in world space, shared by the triangles that index into them.
+
+use crate::math::{Vec2, Vec3};
+
+/// Vertex arrays of a mesh, already transformed to world space.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleMesh {
+    /// Positions.
+    pub positions: Vec<Vec3>,
+    /// Three vertex indices per triangle.
+    pub indices: Vec<u32>,
+    /// Optional unit shading normals per vertex.
+    pub normals: Option<Vec<Vec3>>,
+    /// Optional texture coordinates per vertex.
+    pub uvs: Option<Vec<Vec2>>,
+    /// Flip the geometric normal when there are no shading normals (pbrt's
+    /// `ReverseOrientation` xor "transform swaps handedness").
+    pub flip_normals: bool,
+}
+
+impl TriangleMesh {
+    /// Number of triangles.
+    #[must_use]
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Vertex indices of triangle `i`.
+    #[inline]
+    #[must_use]
+    pub fn vertices(&self, i: u32) -> [usize; 3] {
+        let k = 3 * i as usize;
+        [
+            self.indices[k] as usize,
+            self.indices[k + 1] as usize,
+            self.indices[k + 2] as usize,
+        ]
+    }
+}

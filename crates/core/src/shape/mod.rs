@@ -1,0 +1,91 @@
+//! Layer 2: shapes. Ray intersection with error-bounded hit points, surface interactions,
+//! and uniform-area sampling for area lights.
+
+mod interaction;
+mod mesh;
+mod sphere;
+mod triangle;
+
+pub use interaction::{Interaction, SurfaceInteraction};
+pub use mesh::TriangleMesh;
+pub use sphere::Sphere;
+pub use triangle::Triangle;
+
+use crate::math::{Bounds3, Ray, Vec2};
+
+/// A point sampled on a shape's surface, with its density per unit area.
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeSample {
+    /// The point, its normal and error bound.
+    pub intr: Interaction,
+    /// Density per unit area (world space) of having sampled this point.
+    pub pdf_area: f32,
+}
+
+/// The result of a ray-shape test: distance and the shape-specific data needed to build a
+/// [`SurfaceInteraction`] later, only for the closest hit.
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeHit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// Barycentrics (triangles) or the object-space hit point (spheres).
+    pub data: [f32; 3],
+}
+
+/// The closed set of shapes.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    /// One triangle of a mesh.
+    Triangle(Triangle),
+    /// A sphere.
+    Sphere(Sphere),
+}
+
+/// Forward a method call to the variant.
+macro_rules! dispatch {
+    ($self:ident, $s:ident => $e:expr) => {
+        match $self {
+            Shape::Triangle($s) => $e,
+            Shape::Sphere($s) => $e,
+        }
+    };
+}
+
+impl Shape {
+    /// World-space bounds.
+    #[must_use]
+    pub fn bounds(&self) -> Bounds3 {
+        dispatch!(self, s => s.bounds())
+    }
+
+    /// Closest intersection with `ray` in `(0, t_max)`.
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        dispatch!(self, s => s.intersect(ray, t_max))
+    }
+
+    /// The full surface interaction for a hit found by [`Self::intersect`].
+    #[must_use]
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        dispatch!(self, s => s.interaction(ray, hit))
+    }
+
+    /// Surface area in world space.
+    #[must_use]
+    pub fn area(&self) -> f32 {
+        dispatch!(self, s => s.area())
+    }
+
+    /// A point uniformly distributed by area (exactly so for triangles and uniformly scaled
+    /// spheres; the returned pdf is always the true density).
+    #[must_use]
+    pub fn sample_area(&self, u: Vec2) -> ShapeSample {
+        dispatch!(self, s => s.sample_area(u))
+    }
+
+    /// Density per unit area of [`Self::sample_area`] at a point `intr` of the surface.
+    #[must_use]
+    pub fn pdf_area(&self, intr: &Interaction) -> f32 {
+        dispatch!(self, s => s.pdf_area(intr))
+    }
+}

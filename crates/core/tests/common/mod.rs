@@ -1,0 +1,173 @@
+//! Helpers shared by the integration tests: small scenes built directly as descriptions,
+//! and statistical assertions.
+#![allow(dead_code, missing_docs)]
+
+use mcrender_core::color::Rgb;
+use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
+use mcrender_core::render::{render, RenderOptions, RenderOutput};
+use mcrender_core::scene::*;
+
+/// A scene with no shapes, a black diffuse material 0, and a 4x4 film.
+pub fn empty_scene() -> SceneDescription {
+    SceneDescription {
+        camera: CameraDesc::default(),
+        film: FilmDesc {
+            width: 4,
+            height: 4,
+        },
+        filter: FilterDesc::Box {
+            radius: Vec2::splat(0.5),
+        },
+        sampler: SamplerDesc {
+            samples_per_pixel: 64,
+            ..Default::default()
+        },
+        integrator: IntegratorDesc { max_depth: 5 },
+        materials: vec![MaterialDesc::Diffuse {
+            reflectance: Rgb::BLACK,
+        }],
+        shapes: vec![],
+        lights: vec![],
+    }
+}
+
+/// A camera at the centre of a sphere of `radius` with albedo `albedo`, optionally
+/// emitting. `inward` flips the sphere's normals (pbrt ReverseOrientation).
+pub fn inside_sphere_scene(
+    radius: f32,
+    albedo: Rgb,
+    emission: Option<AreaLightDesc>,
+    inward: bool,
+) -> SceneDescription {
+    let mut d = empty_scene();
+    d.materials.push(MaterialDesc::Diffuse {
+        reflectance: albedo,
+    });
+    d.camera.fov_degrees = 60.0;
+    d.shapes.push(ShapeDesc {
+        geometry: GeometryDesc::Sphere {
+            radius,
+            world_from_object: Transform::IDENTITY,
+        },
+        material: 1,
+        area_light: emission,
+        flip_normals: inward,
+    });
+    d
+}
+
+/// A 0.2 x 0.2 diffuse square at the origin facing +y.
+pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
+    d.materials.push(MaterialDesc::Diffuse {
+        reflectance: Rgb::splat(albedo),
+    });
+    let s = 0.1;
+    d.shapes.push(ShapeDesc {
+        geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
+            positions: vec![
+                Vec3::new(-s, 0.0, -s),
+                Vec3::new(s, 0.0, -s),
+                Vec3::new(s, 0.0, s),
+                Vec3::new(-s, 0.0, s),
+            ],
+            indices: vec![0, 2, 1, 0, 3, 2],
+            normals: None,
+            uvs: None,
+        }),
+        material: (d.materials.len() - 1) as u32,
+        area_light: None,
+        flip_normals: false,
+    });
+}
+
+/// A square of half-side `s` at height `h` above the origin, emitting `l` downwards.
+pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
+    d.shapes.push(ShapeDesc {
+        geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
+            positions: vec![
+                Vec3::new(-s, h, -s),
+                Vec3::new(s, h, -s),
+                Vec3::new(s, h, s),
+                Vec3::new(-s, h, s),
+            ],
+            indices: vec![0, 1, 2, 0, 2, 3],
+            normals: None,
+            uvs: None,
+        }),
+        material: 0,
+        area_light: Some(AreaLightDesc {
+            radiance: l,
+            two_sided: false,
+        }),
+        flip_normals: false,
+    });
+}
+
+/// A sphere light of radius `r` at `centre`.
+pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) {
+    d.shapes.push(ShapeDesc {
+        geometry: GeometryDesc::Sphere {
+            radius: 1.0,
+            world_from_object: Transform::new(
+                Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r)),
+            )
+            .unwrap(),
+        },
+        material: 0,
+        area_light: Some(AreaLightDesc {
+            radiance: l,
+            two_sided: false,
+        }),
+        flip_normals: false,
+    });
+}
+
+/// A camera low beside the receiver, looking at its centre with a tiny field of view, so
+/// every pixel sees (nearly) the receiver's centre.
+pub fn aim_at_receiver(d: &mut SceneDescription) {
+    let eye = Vec3::new(1.0, 0.2, 0.3);
+    // pbrt's camera looks down +z: world_from_camera maps +z to the viewing direction.
+    let camera_from_world = Mat4::look_at_lh(eye, Vec3::ZERO, Vec3::Y);
+    d.camera.world_from_camera = Transform::new(camera_from_world).unwrap().inverse();
+    d.camera.fov_degrees = 0.5;
+}
+
+/// Render with the default options.
+pub fn render_desc(d: &SceneDescription) -> RenderOutput {
+    let scene = Scene::build(d).expect("valid scene");
+    render(&scene, &RenderOptions::default(), &|_, _| {}).expect("render")
+}
+
+/// Assert that the image mean equals `expected` within 4 standard errors per channel,
+/// the standard error estimated from the per-pixel variances of the render itself.
+pub fn assert_mean_radiance(d: &SceneDescription, expected: Rgb) {
+    let out = render_desc(d);
+    let n = out.film.pixels().len() as f64;
+    for c in 0..3 {
+        let mean: f64 = out
+            .film
+            .pixels()
+            .iter()
+            .map(|p| f64::from(p.mean()[c]))
+            .sum::<f64>()
+            / n;
+        let var: f64 = out
+            .film
+            .pixels()
+            .iter()
+            .map(|p| f64::from(p.variance_of_mean()[c]))
+            .sum::<f64>()
+            / (n * n);
+        let se = var.sqrt();
+        let e = f64::from(expected[c]);
+        let tol = 4.0 * se + 1e-6 * e.abs().max(1e-3);
+        assert!(
+            (mean - e).abs() <= tol,
+            "channel {c}: mean {mean:.6} vs expected {e:.6}; |diff| {:.2e} > 4 standard errors {:.2e}",
+            (mean - e).abs(),
+            4.0 * se
+        );
+        eprintln!("channel {c}: mean {mean:.6}, expected {e:.6}, standard error {se:.2e}");
+    }
+    assert_eq!(out.stats.nonfinite_samples, 0, "non-finite samples");
+}
