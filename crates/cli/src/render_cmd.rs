@@ -1,0 +1,175 @@
+//! `mcrender render`: load, apply command-line overrides, render with a progress bar,
+//! write the image (and optionally the per-pixel variance) atomically.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use mcrender_core::render::{render, RenderOptions, RenderOutput};
+use mcrender_core::scene::{Scene, SceneDescription};
+use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
+
+use crate::builtin;
+
+/// Options of `mcrender render`; flags override what the scene file says.
+#[derive(Args, Debug, Default)]
+pub struct RenderArgs {
+    /// pbrt-v4 scene file; the built-in Cornell box when omitted.
+    pub scene: Option<PathBuf>,
+    /// Output image: .png (8-bit sRGB) or .exr (linear float). Default: the file's Film
+    /// "filename", else the scene's name with .png.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Image size as WIDTHxHEIGHT, e.g. 640x480.
+    #[arg(long, value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Maximum path depth (0 = emission only, 1 = direct lighting, ...).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Random seed.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Also write each pixel's estimated variance (of its mean) to this EXR file.
+    #[arg(long)]
+    pub variance_output: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+impl RenderArgs {
+    /// What `mcrender` with no arguments does: a quick render of the built-in scene.
+    pub fn builtin_default() -> Self {
+        Self {
+            output: Some(PathBuf::from(builtin::DEFAULT_OUTPUT)),
+            spp: Some(builtin::DEFAULT_SPP),
+            resolution: Some(builtin::DEFAULT_RESOLUTION),
+            ..Default::default()
+        }
+    }
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
+    let parse = |v: &str| v.trim().parse::<u32>().map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""));
+    Ok((parse(w)?, parse(h)?))
+}
+
+/// Apply command-line overrides to the description.
+fn apply_overrides(desc: &mut SceneDescription, args: &RenderArgs) {
+    if let Some(spp) = args.spp {
+        desc.sampler.samples_per_pixel = spp;
+    }
+    if let Some((w, h)) = args.resolution {
+        desc.film.width = w;
+        desc.film.height = h;
+    }
+    if let Some(d) = args.max_depth {
+        desc.integrator.max_depth = d;
+    }
+    if let Some(s) = args.seed {
+        desc.sampler.seed = s;
+    }
+}
+
+fn load(args: &RenderArgs) -> Result<(LoadedScene, String)> {
+    match &args.scene {
+        Some(path) => {
+            let loaded = load_file(path).map_err(anyhow::Error::new)?;
+            let stem = path.file_stem().map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
+            Ok((loaded, stem))
+        }
+        None => {
+            let loaded = load_str(builtin::SOURCE, builtin::NAME, Path::new(".")).map_err(anyhow::Error::new)?;
+            Ok((loaded, "cornell-box".to_string()))
+        }
+    }
+}
+
+/// Run the command.
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let (loaded, stem) = load(args)?;
+    for w in &loaded.warnings {
+        eprintln!("mcrender: warning: {w}");
+    }
+    let mut desc = loaded.description;
+    apply_overrides(&mut desc, args);
+    let output = args
+        .output
+        .clone()
+        .or_else(|| loaded.output_filename.map(PathBuf::from))
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.png")));
+    check_extension(&output, &["png", "exr"])?;
+    if let Some(v) = &args.variance_output {
+        check_extension(v, &["exr"])?;
+    }
+    let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
+
+    let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
+    let bar = progress_bar(u64::from(w) * u64::from(h), args.quiet);
+    let opts = RenderOptions { threads: args.threads, ..Default::default() };
+    let out = render(&scene, &opts, &|done, _| bar.set_position(done))?;
+    bar.finish_and_clear();
+
+    write_outputs(&out, &output, args.variance_output.as_deref())?;
+    print_summary(&out, w, h, spp, &output);
+    Ok(())
+}
+
+fn check_extension(path: &Path, allowed: &[&str]) -> Result<()> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    if !allowed.contains(&ext.as_str()) {
+        bail!("output file \"{}\": expected extension {}, found \"{ext}\"", path.display(), allowed.join(" or "));
+    }
+    Ok(())
+}
+
+fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent:>3}%  {elapsed_precise} elapsed, ETA {eta_precise}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.enable_steady_tick(Duration::from_millis(200));
+    bar
+}
+
+fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> Result<()> {
+    let (w, h) = (out.film.width(), out.film.height());
+    let img = ImageRgb { width: w, height: h, pixels: out.film.mean_image() };
+    write_image(output, &img).with_context(|| format!("cannot write \"{}\"", output.display()))?;
+    if let Some(v) = variance {
+        let var = ImageRgb { width: w, height: h, pixels: out.film.variance_image() };
+        write_image(v, &var).with_context(|| format!("cannot write \"{}\"", v.display()))?;
+    }
+    Ok(())
+}
+
+fn print_summary(out: &RenderOutput, w: u32, h: u32, spp: u32, output: &Path) {
+    let s = &out.stats;
+    let secs = s.elapsed.as_secs_f64().max(1e-9);
+    let samples = s.paths as f64;
+    let rays = (s.trace.rays + s.trace.shadow_rays) as f64;
+    eprintln!(
+        "{}: {w}x{h}, {spp} spp in {secs:.2} s on {} threads: {:.2} M samples/s, {:.2} M paths/s, {:.2} M rays/s{}",
+        output.display(),
+        s.threads,
+        samples / secs / 1e6,
+        samples / secs / 1e6,
+        rays / secs / 1e6,
+        if s.nonfinite_samples > 0 { format!(" ({} non-finite samples dropped)", s.nonfinite_samples) } else { String::new() },
+    );
+}

@@ -1,0 +1,100 @@
+//! The `mcrender` binary as a user meets it: determinism across thread counts, clear
+//! errors with exit code 2 and no partial output for bad input, and the no-argument render.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn mcrender(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mcrender")).args(args).current_dir(dir).output().expect("mcrender runs")
+}
+
+fn cornell() -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt").display().to_string()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn same_seed_gives_identical_bytes_with_one_and_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = cornell();
+    let run = |threads: &str, seed: &str, out: &str| {
+        let o = mcrender(
+            &["render", &scene, "-o", out, "--resolution", "48x40", "--spp", "8", "--threads", threads, "--seed", seed, "-q"],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(dir.path().join(out)).unwrap()
+    };
+    let one = run("1", "3", "one.exr");
+    let two = run("2", "3", "two.exr");
+    assert!(one == two, "1-thread and 2-thread renders differ");
+    let other_seed = run("2", "4", "other.exr");
+    assert!(one != other_seed, "a different seed gave the same image");
+}
+
+#[test]
+fn malformed_scene_is_rejected_with_location_and_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.pbrt");
+    std::fs::write(&bad, "Film \"rgb\" \"integer xresolution\" [ 64 ]\nWorldBegin\nShape \"sphere\" \"float radius\" [ oops ]\n").unwrap();
+    let o = mcrender(&["render", bad.to_str().unwrap(), "-o", "out.png", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let msg = stderr(&o);
+    assert!(msg.contains("bad.pbrt:3:"), "message lacks file:line: {msg}");
+    assert!(!msg.contains("panicked"), "{msg}");
+    assert!(!dir.path().join("out.png").exists());
+}
+
+#[test]
+fn missing_scene_file_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = mcrender(&["render", "no-such-scene.pbrt", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no-such-scene.pbrt"), "{}", stderr(&o));
+}
+
+#[test]
+fn absurd_resolution_is_refused_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = mcrender(&["render", &cornell(), "-o", "huge.png", "--resolution", "100000x100000", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("resolution"), "{}", stderr(&o));
+    assert!(!dir.path().join("huge.png").exists());
+}
+
+#[test]
+fn unknown_output_format_is_refused_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = mcrender(&["render", &cornell(), "-o", "out.jpg", "--spp", "1", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("out.jpg"), "{}", stderr(&o));
+    assert!(!dir.path().join("out.jpg").exists());
+}
+
+#[test]
+fn unwritable_output_leaves_nothing_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = mcrender(&["render", &cornell(), "-o", "missing-dir/out.png", "--resolution", "8x8", "--spp", "1", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!dir.path().join("missing-dir").exists());
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+#[test]
+fn no_arguments_renders_the_builtin_cornell_box() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = mcrender(&[], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = dir.path().join("cornell-box.png");
+    let img = image::open(&png).expect("a PNG").to_rgb8();
+    assert_eq!(img.dimensions(), (256, 256));
+    // The red wall is on the left, the green wall on the right.
+    let left = img.get_pixel(20, 128);
+    let right = img.get_pixel(235, 128);
+    assert!(left[0] > 2 * left[1] && right[1] > 2 * right[0], "left {left:?} right {right:?}");
+    assert!(stderr(&o).contains("paths/s"), "{}", stderr(&o));
+}
