@@ -1,2 +1,12 @@
 //! Layer 1: random numbers, samplers, warps from the unit square with their pdfs and
-//! inverses, 1-D distributions, MIS heuristics, and the chi-square harness.
+//! inverses, piecewise-constant 1-D and 2-D distributions, MIS heuristics, and the
+//! chi-square harness that tests every sampling routine against its pdf.
+
+mod hash;
+mod rng;
+
+pub use hash::{hash_u64s, mix_bits};
+pub use rng::Pcg32;
+
+/// The largest `f32` below 1: the upper end of every sample value.
+pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
