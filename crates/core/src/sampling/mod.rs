@@ -4,9 +4,11 @@
 
 mod hash;
 mod rng;
+mod sampler;
 
 pub use hash::{hash_u64s, mix_bits};
 pub use rng::Pcg32;
+pub use sampler::{IndependentSampler, Sampler};
 
 /// The largest `f32` below 1: the upper end of every sample value.
 pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
