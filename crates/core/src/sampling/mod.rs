@@ -2,13 +2,16 @@
 //! inverses, piecewise-constant 1-D and 2-D distributions, MIS heuristics, and the
 //! chi-square harness that tests every sampling routine against its pdf.
 
+pub mod chi2;
 mod hash;
 mod rng;
 mod sampler;
+mod warp;
 
 pub use hash::{hash_u64s, mix_bits};
 pub use rng::Pcg32;
 pub use sampler::{IndependentSampler, Sampler};
+pub use warp::*;
 
 /// The largest `f32` below 1: the upper end of every sample value.
 pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
