@@ -3,12 +3,18 @@
 //! chi-square harness that tests every sampling routine against its pdf.
 
 pub mod chi2;
+mod distribution;
+mod distribution_2d;
 mod hash;
+mod mis;
 mod rng;
 mod sampler;
 mod warp;
 
+pub use distribution::PiecewiseConstant1D;
+pub use distribution_2d::PiecewiseConstant2D;
 pub use hash::{hash_u64s, mix_bits};
+pub use mis::{balance_heuristic, power_heuristic};
 pub use rng::Pcg32;
 pub use sampler::{IndependentSampler, Sampler};
 pub use warp::*;
