@@ -1,54 +1,103 @@
-//! TEMPORARY stand-in: replaced by the full filter module when the sampling branch merges.
+//! Pixel reconstruction filters. The film does not splat: each camera sample is placed at
+//! the pixel centre plus an offset `p` drawn from the filter by importance sampling, and
+//! carries the weight `f(p) / (pdf(p) * integral of f)`, so the pixel value is
+//! `sum weight * L / sum weight`. The weight is exactly 1 for the box and triangle filters,
+//! whose sampling densities are proportional to them, and close to 1 for the Gaussian.
+
+mod box_filter;
+mod gaussian_filter;
+mod triangle_filter;
+
+pub use box_filter::BoxFilter;
+pub use gaussian_filter::GaussianFilter;
+pub use triangle_filter::TriangleFilter;
 
 use crate::math::Vec2;
 use crate::scene::FilterDesc;
 
-/// Filter sample.
-#[derive(Clone, Copy, Debug)]
+/// An offset from the pixel centre drawn from a filter, with its weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FilterSample {
-    /// Offset.
+    /// Offset from the pixel centre, in pixels, inside [-radius, radius].
     pub p: Vec2,
-    /// Weight.
+    /// `f(p) / (pdf(p) * integral of f)`: 1 on average, exactly 1 when the sampling
+    /// density is proportional to the filter.
     pub weight: f32,
 }
 
-/// Filter.
-#[derive(Clone, Debug)]
-pub struct Filter {
-    radius: Vec2,
-    tent: bool,
+/// A pixel filter: a closed set of kinds, each in its own file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Filter {
+    /// Constant over the square.
+    Box(BoxFilter),
+    /// Separable tent.
+    Triangle(TriangleFilter),
+    /// Separable truncated Gaussian.
+    Gaussian(GaussianFilter),
+}
+
+/// Forwards a method call to the variant inside a [`Filter`].
+macro_rules! dispatch {
+    ($self:expr, $f:ident => $call:expr) => {
+        match $self {
+            Filter::Box($f) => $call,
+            Filter::Triangle($f) => $call,
+            Filter::Gaussian($f) => $call,
+        }
+    };
 }
 
 impl Filter {
-    /// New.
+    /// The filter a scene description asks for.
+    ///
+    /// # Panics
+    /// If a radius or the Gaussian's sigma is not positive.
     #[must_use]
-    pub fn new(d: &FilterDesc) -> Self {
-        match *d {
-            FilterDesc::Box { radius } => Self {
-                radius,
-                tent: false,
-            },
-            FilterDesc::Triangle { radius } | FilterDesc::Gaussian { radius, .. } => {
-                Self { radius, tent: true }
+    pub fn new(desc: &FilterDesc) -> Self {
+        match *desc {
+            FilterDesc::Box { radius } => Self::Box(BoxFilter::new(radius)),
+            FilterDesc::Triangle { radius } => Self::Triangle(TriangleFilter::new(radius)),
+            FilterDesc::Gaussian { radius, sigma } => {
+                Self::Gaussian(GaussianFilter::new(radius, sigma))
             }
         }
     }
-    /// Sample.
+
+    /// Half-width of the support in each axis, in pixels.
+    #[inline]
+    #[must_use]
+    pub fn radius(&self) -> Vec2 {
+        dispatch!(self, f => f.radius())
+    }
+
+    /// The filter's value at offset `p` (zero outside the support).
+    #[inline]
+    #[must_use]
+    pub fn evaluate(&self, p: Vec2) -> f32 {
+        dispatch!(self, f => f.evaluate(p))
+    }
+
+    /// Integral of [`evaluate`](Self::evaluate) over the plane.
+    #[inline]
+    #[must_use]
+    pub fn integral(&self) -> f32 {
+        dispatch!(self, f => f.integral())
+    }
+
+    /// An offset drawn with density [`pdf`](Self::pdf) from `u` in [0, 1)^2, with its weight.
+    #[inline]
     #[must_use]
     pub fn sample(&self, u: Vec2) -> FilterSample {
-        let f = |u: f32, r: f32| {
-            if !self.tent {
-                return (2.0 * u - 1.0) * r;
-            }
-            if u < 0.5 {
-                -r + r * (2.0 * u).sqrt()
-            } else {
-                r - r * (2.0 - 2.0 * u).sqrt()
-            }
-        };
-        FilterSample {
-            p: Vec2::new(f(u.x, self.radius.x), f(u.y, self.radius.y)),
-            weight: 1.0,
-        }
+        dispatch!(self, f => f.sample(u))
+    }
+
+    /// Density per unit area of the offsets [`sample`](Self::sample) returns.
+    #[inline]
+    #[must_use]
+    pub fn pdf(&self, p: Vec2) -> f32 {
+        dispatch!(self, f => f.pdf(p))
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -4,4 +4,4 @@ mod accumulator;
 mod filter;
 
 pub use accumulator::{Film, PixelStats};
-pub use filter::{Filter, FilterSample};
+pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
