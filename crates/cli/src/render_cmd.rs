@@ -59,8 +59,14 @@ impl RenderArgs {
 }
 
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
-    let parse = |v: &str| v.trim().parse::<u32>().map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""));
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""))
+    };
     Ok((parse(w)?, parse(h)?))
 }
 
@@ -85,7 +91,9 @@ fn load(args: &RenderArgs) -> Result<(LoadedScene, String)> {
     match &args.scene {
         Some(path) => {
             let loaded = load_file(path).map_err(anyhow::Error::new)?;
-            let stem = path.file_stem().map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
+            let stem = path
+                .file_stem()
+                .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
             Ok((loaded, stem))
         }
         None => {
@@ -116,7 +124,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
     let bar = progress_bar(u64::from(w) * u64::from(h), args.quiet);
-    let opts = RenderOptions { threads: args.threads, ..Default::default() };
+    let opts = RenderOptions {
+        threads: args.threads,
+        ..Default::default()
+    };
     let out = render(&scene, &opts, &|done, _| bar.set_position(done))?;
     bar.finish_and_clear();
 
@@ -126,9 +137,17 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 }
 
 fn check_extension(path: &Path, allowed: &[&str]) -> Result<()> {
-    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
     if !allowed.contains(&ext.as_str()) {
-        bail!("output file \"{}\": expected extension {}, found \"{ext}\"", path.display(), allowed.join(" or "));
+        bail!(
+            "output file \"{}\": expected extension {}, found \"{ext}\"",
+            path.display(),
+            allowed.join(" or ")
+        );
     }
     Ok(())
 }
@@ -139,9 +158,11 @@ fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
     }
     let bar = ProgressBar::new(total);
     bar.set_style(
-        ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent:>3}%  {elapsed_precise} elapsed, ETA {eta_precise}")
-            .expect("valid template")
-            .progress_chars("=> "),
+        ProgressStyle::with_template(
+            "{spinner} rendering [{bar:40}] {percent:>3}%  {elapsed_precise} elapsed, ETA {eta_precise}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
     );
     bar.enable_steady_tick(Duration::from_millis(200));
     bar
@@ -149,10 +170,18 @@ fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
 
 fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> Result<()> {
     let (w, h) = (out.film.width(), out.film.height());
-    let img = ImageRgb { width: w, height: h, pixels: out.film.mean_image() };
+    let img = ImageRgb {
+        width: w,
+        height: h,
+        pixels: out.film.mean_image(),
+    };
     write_image(output, &img).with_context(|| format!("cannot write \"{}\"", output.display()))?;
     if let Some(v) = variance {
-        let var = ImageRgb { width: w, height: h, pixels: out.film.variance_image() };
+        let var = ImageRgb {
+            width: w,
+            height: h,
+            pixels: out.film.variance_image(),
+        };
         write_image(v, &var).with_context(|| format!("cannot write \"{}\"", v.display()))?;
     }
     Ok(())
@@ -170,6 +199,10 @@ fn print_summary(out: &RenderOutput, w: u32, h: u32, spp: u32, output: &Path) {
         samples / secs / 1e6,
         samples / secs / 1e6,
         rays / secs / 1e6,
-        if s.nonfinite_samples > 0 { format!(" ({} non-finite samples dropped)", s.nonfinite_samples) } else { String::new() },
+        if s.nonfinite_samples > 0 {
+            format!(" ({} non-finite samples dropped)", s.nonfinite_samples)
+        } else {
+            String::new()
+        },
     );
 }

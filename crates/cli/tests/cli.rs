@@ -5,11 +5,18 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn mcrender(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mcrender")).args(args).current_dir(dir).output().expect("mcrender runs")
+    Command::new(env!("CARGO_BIN_EXE_mcrender"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("mcrender runs")
 }
 
 fn cornell() -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt").display().to_string()
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/cornell-box/scene-v4.pbrt")
+        .display()
+        .to_string()
 }
 
 fn stderr(o: &Output) -> String {
@@ -22,7 +29,21 @@ fn same_seed_gives_identical_bytes_with_one_and_two_threads() {
     let scene = cornell();
     let run = |threads: &str, seed: &str, out: &str| {
         let o = mcrender(
-            &["render", &scene, "-o", out, "--resolution", "48x40", "--spp", "8", "--threads", threads, "--seed", seed, "-q"],
+            &[
+                "render",
+                &scene,
+                "-o",
+                out,
+                "--resolution",
+                "48x40",
+                "--spp",
+                "8",
+                "--threads",
+                threads,
+                "--seed",
+                seed,
+                "-q",
+            ],
             dir.path(),
         );
         assert!(o.status.success(), "{}", stderr(&o));
@@ -39,7 +60,11 @@ fn same_seed_gives_identical_bytes_with_one_and_two_threads() {
 fn malformed_scene_is_rejected_with_location_and_no_output() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("bad.pbrt");
-    std::fs::write(&bad, "Film \"rgb\" \"integer xresolution\" [ 64 ]\nWorldBegin\nShape \"sphere\" \"float radius\" [ oops ]\n").unwrap();
+    std::fs::write(
+        &bad,
+        "Film \"rgb\" \"integer xresolution\" [ 64 ]\nWorldBegin\nShape \"sphere\" \"float radius\" [ oops ]\n",
+    )
+    .unwrap();
     let o = mcrender(&["render", bad.to_str().unwrap(), "-o", "out.png", "-q"], dir.path());
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let msg = stderr(&o);
@@ -59,7 +84,18 @@ fn missing_scene_file_is_an_error() {
 #[test]
 fn absurd_resolution_is_refused_before_rendering() {
     let dir = tempfile::tempdir().unwrap();
-    let o = mcrender(&["render", &cornell(), "-o", "huge.png", "--resolution", "100000x100000", "-q"], dir.path());
+    let o = mcrender(
+        &[
+            "render",
+            &cornell(),
+            "-o",
+            "huge.png",
+            "--resolution",
+            "100000x100000",
+            "-q",
+        ],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("resolution"), "{}", stderr(&o));
     assert!(!dir.path().join("huge.png").exists());
@@ -77,7 +113,20 @@ fn unknown_output_format_is_refused_before_rendering() {
 #[test]
 fn unwritable_output_leaves_nothing_behind() {
     let dir = tempfile::tempdir().unwrap();
-    let o = mcrender(&["render", &cornell(), "-o", "missing-dir/out.png", "--resolution", "8x8", "--spp", "1", "-q"], dir.path());
+    let o = mcrender(
+        &[
+            "render",
+            &cornell(),
+            "-o",
+            "missing-dir/out.png",
+            "--resolution",
+            "8x8",
+            "--spp",
+            "1",
+            "-q",
+        ],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(!dir.path().join("missing-dir").exists());
     let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
@@ -95,6 +144,9 @@ fn no_arguments_renders_the_builtin_cornell_box() {
     // The red wall is on the left, the green wall on the right.
     let left = img.get_pixel(20, 128);
     let right = img.get_pixel(235, 128);
-    assert!(left[0] > 2 * left[1] && right[1] > 2 * right[0], "left {left:?} right {right:?}");
+    assert!(
+        left[0] > 2 * left[1] && right[1] > 2 * right[0],
+        "left {left:?} right {right:?}"
+    );
     assert!(stderr(&o).contains("paths/s"), "{}", stderr(&o));
 }

@@ -77,10 +77,27 @@ fn cornell_box_matches_mitsuba_reference() {
         let rel = (m_ours - m_ref).abs() / m_ref;
         let msz = z2_sum[c] / n;
         eprintln!("channel {c}: mean ours {m_ours:.5} reference {m_ref:.5} (rel. diff {rel:.4}); mean z^2 {msz:.3}");
-        assert!(rel < 0.01, "channel {c}: image mean {m_ours:.5} vs reference {m_ref:.5}, {:.2}% apart", rel * 100.0);
-        assert!(msz < 1.5, "channel {c}: mean squared z-score {msz:.3}: differences exceed the noise");
+        assert!(
+            rel < 0.01,
+            "channel {c}: image mean {m_ours:.5} vs reference {m_ref:.5}, {:.2}% apart",
+            rel * 100.0
+        );
+        assert!(
+            msz < 1.5,
+            "channel {c}: mean squared z-score {msz:.3}: differences exceed the noise"
+        );
     }
     let tail_fraction = tail as f64 / (3.0 * n);
-    eprintln!("|z| > 5 in {tail} of {} pixel channels; worst |z| {:.2} at ({}, {}) channel {}", 3.0 * n, worst.0, worst.1, worst.2, worst.3);
-    assert!(tail_fraction < 0.002, "{tail} pixel channels differ by more than 5 standard errors");
+    eprintln!(
+        "|z| > 5 in {tail} of {} pixel channels; worst |z| {:.2} at ({}, {}) channel {}",
+        3.0 * n,
+        worst.0,
+        worst.1,
+        worst.2,
+        worst.3
+    );
+    assert!(
+        tail_fraction < 0.002,
+        "{tail} pixel channels differ by more than 5 standard errors"
+    );
 }

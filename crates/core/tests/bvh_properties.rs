@@ -24,7 +24,14 @@ fn shapes_of(tris: &[[Vec3; 3]]) -> Vec<Shape> {
         indices: (0..3 * tris.len() as u32).collect(),
         ..Default::default()
     });
-    (0..tris.len() as u32).map(|index| Shape::Triangle(Triangle { mesh: mesh.clone(), index })).collect()
+    (0..tris.len() as u32)
+        .map(|index| {
+            Shape::Triangle(Triangle {
+                mesh: mesh.clone(),
+                index,
+            })
+        })
+        .collect()
 }
 
 proptest! {
@@ -83,13 +90,27 @@ fn shared_edges_leave_no_gaps() {
         positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
     }
     let indices = (0..n).flat_map(|i| [0, i + 1, i + 2]).collect();
-    let mesh = Arc::new(TriangleMesh { positions: positions.clone(), indices, ..Default::default() });
-    let shapes: Vec<Shape> = (0..n).map(|index| Shape::Triangle(Triangle { mesh: mesh.clone(), index })).collect();
+    let mesh = Arc::new(TriangleMesh {
+        positions: positions.clone(),
+        indices,
+        ..Default::default()
+    });
+    let shapes: Vec<Shape> = (0..n)
+        .map(|index| {
+            Shape::Triangle(Triangle {
+                mesh: mesh.clone(),
+                index,
+            })
+        })
+        .collect();
     for p in positions.iter().skip(1).take(n as usize) {
         let target = *p * 0.5; // on the shared edge from the centre
         for o in [Vec3::new(0.3, -0.2, 2.0), Vec3::new(-1.0, 0.7, -3.0)] {
             let ray = Ray::new(o, (target - o).normalize());
-            assert!(shapes.iter().any(|s| s.intersect(&ray, f32::INFINITY).is_some()), "ray through {target} slipped through");
+            assert!(
+                shapes.iter().any(|s| s.intersect(&ray, f32::INFINITY).is_some()),
+                "ray through {target} slipped through"
+            );
         }
     }
 }

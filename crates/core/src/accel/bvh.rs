@@ -76,9 +76,7 @@ impl Bvh {
             _pad: 0,
         });
 
-        let centroid_bounds = prims
-            .iter()
-            .fold(Bounds3::EMPTY, |b, p| b.union_point(p.centroid));
+        let centroid_bounds = prims.iter().fold(Bounds3::EMPTY, |b, p| b.union_point(p.centroid));
         let axis = centroid_bounds.max_extent_axis();
         let degenerate = centroid_bounds.max[axis] == centroid_bounds.min[axis];
         let split = if prims.len() == 1 || (degenerate && prims.len() <= MAX_PRIMS_IN_LEAF) {
@@ -117,12 +115,7 @@ impl Bvh {
 
     /// Choose a split by the SAH over bucketed centroids; partitions `prims` and returns
     /// the split position, or `None` when a leaf is cheaper.
-    fn sah_split(
-        prims: &mut [BuildPrim],
-        bounds: Bounds3,
-        centroid_bounds: Bounds3,
-        axis: usize,
-    ) -> Option<usize> {
+    fn sah_split(prims: &mut [BuildPrim], bounds: Bounds3, centroid_bounds: Bounds3, axis: usize) -> Option<usize> {
         let bucket_of = |p: &BuildPrim| {
             let b = (BUCKETS as f32 * centroid_bounds.offset(p.centroid)[axis]) as usize;
             b.min(BUCKETS - 1)
@@ -240,12 +233,7 @@ impl Bvh {
 
     /// True when any primitive blocks `ray` within `(0, t_max)`: `test` says whether one
     /// primitive does. Stops at the first blocker.
-    pub fn any_hit(
-        &self,
-        ray: &Ray,
-        t_max: f32,
-        mut test: impl FnMut(u32, &Ray, f32) -> bool,
-    ) -> bool {
+    pub fn any_hit(&self, ray: &Ray, t_max: f32, mut test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -297,12 +285,7 @@ impl Bvh {
         }
     }
 
-    fn check_node(
-        &self,
-        index: usize,
-        prim_bounds: &[Bounds3],
-        seen: &mut [u32],
-    ) -> Result<Bounds3, String> {
+    fn check_node(&self, index: usize, prim_bounds: &[Bounds3], seen: &mut [u32]) -> Result<Bounds3, String> {
         let node = self
             .nodes
             .get(index)
@@ -317,10 +300,7 @@ impl Bvh {
             b
         } else {
             if node.offset as usize <= index + 1 {
-                return Err(format!(
-                    "interior node {index} has second child {}",
-                    node.offset
-                ));
+                return Err(format!("interior node {index} has second child {}", node.offset));
             }
             let a = self.check_node(index + 1, prim_bounds, seen)?;
             let b = self.check_node(node.offset as usize, prim_bounds, seen)?;

@@ -135,3 +135,6 @@ impl Bsdf {
 pub fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
     a.z * b.z > 0.0
 }
+
+#[cfg(test)]
+pub(crate) mod tests;

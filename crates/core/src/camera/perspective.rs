@@ -94,13 +94,7 @@ mod tests {
             focal_distance: 3.0,
             ..Default::default()
         };
-        let cam = PerspectiveCamera::new(
-            &desc,
-            &FilmDesc {
-                width: 64,
-                height: 64,
-            },
-        );
+        let cam = PerspectiveCamera::new(&desc, &FilmDesc { width: 64, height: 64 });
         let p = Vec2::new(10.0, 20.0);
         let a = cam.generate_ray(p, Vec2::new(0.1, 0.9));
         let b = cam.generate_ray(p, Vec2::new(0.8, 0.3));

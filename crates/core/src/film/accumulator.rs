@@ -131,10 +131,7 @@ impl Film {
     /// The variance of every pixel's estimate.
     #[must_use]
     pub fn variance_image(&self) -> Vec<Rgb> {
-        self.pixels
-            .iter()
-            .map(PixelStats::variance_of_mean)
-            .collect()
+        self.pixels.iter().map(PixelStats::variance_of_mean).collect()
     }
 }
 

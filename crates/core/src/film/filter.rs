@@ -57,9 +57,7 @@ impl Filter {
         match *desc {
             FilterDesc::Box { radius } => Self::Box(BoxFilter::new(radius)),
             FilterDesc::Triangle { radius } => Self::Triangle(TriangleFilter::new(radius)),
-            FilterDesc::Gaussian { radius, sigma } => {
-                Self::Gaussian(GaussianFilter::new(radius, sigma))
-            }
+            FilterDesc::Gaussian { radius, sigma } => Self::Gaussian(GaussianFilter::new(radius, sigma)),
         }
     }
 

@@ -44,13 +44,7 @@ impl Integrator {
     }
 
     /// Radiance arriving at the camera along `ray`.
-    pub fn li(
-        &self,
-        scene: &Scene,
-        ray: Ray,
-        sampler: &mut Sampler,
-        stats: &mut TraceStats,
-    ) -> Rgb {
+    pub fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler, stats: &mut TraceStats) -> Rgb {
         match self {
             Self::Path(p) => p.li(scene, ray, sampler, stats),
         }

@@ -20,13 +20,7 @@ pub struct PathIntegrator {
 
 impl PathIntegrator {
     /// Radiance along `ray`.
-    pub fn li(
-        &self,
-        scene: &Scene,
-        mut ray: Ray,
-        sampler: &mut Sampler,
-        stats: &mut TraceStats,
-    ) -> Rgb {
+    pub fn li(&self, scene: &Scene, mut ray: Ray, sampler: &mut Sampler, stats: &mut TraceStats) -> Rgb {
         let mut l = Rgb::BLACK;
         let mut beta = Rgb::WHITE;
         let mut depth = 0u32;
@@ -52,8 +46,7 @@ impl PathIntegrator {
                         if depth == 0 || specular_bounce {
                             l += beta * le;
                         } else {
-                            let p_light = scene.light_sampler.pmf(light_index as usize)
-                                * area.pdf_li(&prev, &si.intr);
+                            let p_light = scene.light_sampler.pmf(light_index as usize) * area.pdf_li(&prev, &si.intr);
                             l += beta * le * power_heuristic(1.0, prev_bsdf_pdf, 1.0, p_light);
                         }
                     }

@@ -69,3 +69,6 @@ impl Light {
         matches!(self, Self::Point(_))
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -15,10 +15,7 @@ impl PowerLightSampler {
     /// Build over `lights`; all-dark lights get uniform probabilities.
     #[must_use]
     pub fn new(lights: &[Light]) -> Self {
-        let mut weights: Vec<f32> = lights
-            .iter()
-            .map(|l| l.power().luminance().max(0.0))
-            .collect();
+        let mut weights: Vec<f32> = lights.iter().map(|l| l.power().luminance().max(0.0)).collect();
         let total: f32 = weights.iter().sum();
         if !(total > 0.0 && total.is_finite()) {
             weights.iter_mut().for_each(|w| *w = 1.0);
@@ -42,14 +39,9 @@ impl PowerLightSampler {
         if self.pmf.is_empty() {
             return None;
         }
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= u)
-            .min(self.pmf.len() - 1);
+        let i = self.cdf.partition_point(|&c| c <= u).min(self.pmf.len() - 1);
         // Skip zero-probability entries that rounding could land on.
-        let i = (i..self.pmf.len())
-            .find(|&j| self.pmf[j] > 0.0)
-            .unwrap_or(i);
+        let i = (i..self.pmf.len()).find(|&j| self.pmf[j] > 0.0).unwrap_or(i);
         Some((i, self.pmf[i]))
     }
 

@@ -32,11 +32,7 @@ impl Frame {
     pub fn from_zx(n: Vec3, t: Vec3) -> Self {
         let x = (t - n * n.dot(t)).try_normalize();
         match x {
-            Some(x) => Self {
-                x,
-                y: n.cross(x),
-                z: n,
-            },
+            Some(x) => Self { x, y: n.cross(x), z: n },
             None => Self::from_z(n),
         }
     }
@@ -71,9 +67,7 @@ mod tests {
         ] {
             let f = Frame::from_z(n);
             assert!((f.x.length() - 1.0).abs() < 1e-5 && (f.y.length() - 1.0).abs() < 1e-5);
-            assert!(
-                f.x.dot(f.y).abs() < 1e-5 && f.x.dot(f.z).abs() < 1e-5 && f.y.dot(f.z).abs() < 1e-5
-            );
+            assert!(f.x.dot(f.y).abs() < 1e-5 && f.x.dot(f.z).abs() < 1e-5 && f.y.dot(f.z).abs() < 1e-5);
             let v = Vec3::new(0.2, 0.7, -0.4);
             assert!((f.from_local(f.to_local(v)) - v).length() < 1e-5);
         }

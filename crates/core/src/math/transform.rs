@@ -31,10 +31,7 @@ impl Transform {
         if !det.is_finite() || det == 0.0 || !m.is_finite() {
             return None;
         }
-        Some(Self {
-            m,
-            m_inv: m.inverse(),
-        })
+        Some(Self { m, m_inv: m.inverse() })
     }
 
     /// The inverse transform.

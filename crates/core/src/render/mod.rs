@@ -80,10 +80,7 @@ pub fn render(
     opts: &RenderOptions,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<RenderOutput, RenderError> {
-    let threads = opts
-        .threads
-        .unwrap_or_else(rayon::current_num_threads)
-        .max(1);
+    let threads = opts.threads.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -126,11 +123,7 @@ pub fn render(
 }
 
 /// Render all samples of every pixel in a tile, in tile order.
-fn render_tile(
-    scene: &Scene,
-    integrator: &Integrator,
-    tile: &Tile,
-) -> (Vec<PixelStats>, TraceStats, u64) {
+fn render_tile(scene: &Scene, integrator: &Integrator, tile: &Tile) -> (Vec<PixelStats>, TraceStats, u64) {
     let mut sampler = Sampler::new(&scene.sampler);
     let spp = sampler.samples_per_pixel();
     let mut trace = TraceStats::default();

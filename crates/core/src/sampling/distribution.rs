@@ -45,13 +45,7 @@ impl PiecewiseConstant1D {
         }
         let (cdf, bin_pdf) = if sum > 0.0 {
             let cdf = sums.iter().map(|s| (s / sum) as f32).collect();
-            (
-                cdf,
-                values
-                    .iter()
-                    .map(|&v| (f64::from(v) / sum) as f32)
-                    .collect(),
-            )
+            (cdf, values.iter().map(|&v| (f64::from(v) / sum) as f32).collect())
         } else {
             let cdf = (0..=n).map(|i| (i as f64 / n as f64) as f32).collect();
             (cdf, vec![(1.0 / f64::from(max - min)) as f32; n])
@@ -206,11 +200,7 @@ mod tests {
             max: 3.0,
             bins: 20,
         };
-        let report = Chi2Test::new(1_000_000, suite_seed()).interval(
-            grid,
-            |u, _| Some(d.sample(u).0),
-            |x| d.pdf(x),
-        );
+        let report = Chi2Test::new(1_000_000, suite_seed()).interval(grid, |u, _| Some(d.sample(u).0), |x| d.pdf(x));
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,

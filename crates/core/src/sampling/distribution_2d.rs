@@ -27,19 +27,12 @@ impl PiecewiseConstant2D {
     #[must_use]
     pub fn new(values: &[f32], resolution: UVec2, min: Vec2, max: Vec2) -> Self {
         let (nx, ny) = (resolution.x as usize, resolution.y as usize);
-        assert_eq!(
-            values.len(),
-            nx * ny,
-            "need resolution.x * resolution.y values"
-        );
+        assert_eq!(values.len(), nx * ny, "need resolution.x * resolution.y values");
         let conditional: Vec<_> = values
             .chunks_exact(nx)
             .map(|row| PiecewiseConstant1D::new(row, min.x, max.x))
             .collect();
-        let row_integrals: Vec<f32> = conditional
-            .iter()
-            .map(PiecewiseConstant1D::integral)
-            .collect();
+        let row_integrals: Vec<f32> = conditional.iter().map(PiecewiseConstant1D::integral).collect();
         let marginal = PiecewiseConstant1D::new(&row_integrals, min.y, max.y);
         Self {
             conditional,
@@ -70,11 +63,7 @@ impl PiecewiseConstant2D {
     pub fn sample(&self, u: Vec2) -> (Vec2, f32, UVec2) {
         let (y, pdf_y, row) = self.marginal.sample(u.y);
         let (x, pdf_x, col) = self.conditional[row].sample(u.x);
-        (
-            Vec2::new(x, y),
-            pdf_x * pdf_y,
-            UVec2::new(col as u32, row as u32),
-        )
+        (Vec2::new(x, y), pdf_x * pdf_y, UVec2::new(col as u32, row as u32))
     }
 
     /// The density of [`sample`](Self::sample) at `p` (0 outside the rectangle).
@@ -117,12 +106,7 @@ mod tests {
     const VALUES: [f32; 12] = [1.0, 0.0, 3.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.5, 4.0, 1.0, 0.25];
 
     fn distribution() -> PiecewiseConstant2D {
-        PiecewiseConstant2D::new(
-            &VALUES,
-            UVec2::new(4, 3),
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(1.0, 3.0),
-        )
+        PiecewiseConstant2D::new(&VALUES, UVec2::new(4, 3), Vec2::new(-1.0, 0.0), Vec2::new(1.0, 3.0))
     }
 
     #[test]
@@ -152,11 +136,7 @@ mod tests {
             max: Vec2::new(1.0, 3.0),
             bins: UVec2::new(10, 9),
         };
-        let report = Chi2Test::new(1_000_000, suite_seed()).rect(
-            grid,
-            |u, _| Some(d.sample(u).0),
-            |p| d.pdf(p),
-        );
+        let report = Chi2Test::new(1_000_000, suite_seed()).rect(grid, |u, _| Some(d.sample(u).0), |p| d.pdf(p));
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,

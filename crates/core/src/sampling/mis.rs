@@ -46,10 +46,7 @@ mod tests {
             for (nf, ng) in [(1.0, 1.0), (2.0, 1.0)] {
                 let b = balance_heuristic(nf, pf, ng, pg) + balance_heuristic(ng, pg, nf, pf);
                 let p = power_heuristic(nf, pf, ng, pg) + power_heuristic(ng, pg, nf, pf);
-                assert!(
-                    (b - 1.0).abs() < 1e-6 && (p - 1.0).abs() < 1e-6,
-                    "{pf} {pg}"
-                );
+                assert!((b - 1.0).abs() < 1e-6 && (p - 1.0).abs() < 1e-6, "{pf} {pg}");
             }
         }
         assert!((power_heuristic(1.0, 1.0, 1.0, 3.0) - 0.1).abs() < 1e-7);

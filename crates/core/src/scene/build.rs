@@ -47,10 +47,7 @@ fn check_finite(what: &str, vals: &[f32]) -> Result<(), BuildError> {
 fn check_non_negative(what: &str, vals: &[f32]) -> Result<(), BuildError> {
     check_finite(what, vals)?;
     match vals.iter().find(|v| **v < 0.0) {
-        Some(v) => Err(invalid(
-            what,
-            format!("expected non-negative values, found {v}"),
-        )),
+        Some(v) => Err(invalid(what, format!("expected non-negative values, found {v}"))),
         None => Ok(()),
     }
 }
@@ -59,12 +56,7 @@ impl SceneDescription {
     /// Check every value the renderer relies on.
     pub fn validate(&self) -> Result<(), BuildError> {
         let (w, h) = (self.film.width, self.film.height);
-        if w == 0
-            || h == 0
-            || w > MAX_RESOLUTION
-            || h > MAX_RESOLUTION
-            || u64::from(w) * u64::from(h) > MAX_PIXELS
-        {
+        if w == 0 || h == 0 || w > MAX_RESOLUTION || h > MAX_RESOLUTION || u64::from(w) * u64::from(h) > MAX_PIXELS {
             return Err(invalid(
                 "resolution",
                 format!("{w}x{h}; expected 1 to {MAX_RESOLUTION} pixels per side and at most {MAX_PIXELS} pixels"),
@@ -95,20 +87,14 @@ impl SceneDescription {
             super::FilterDesc::Gaussian { radius, sigma } => {
                 check_positive_radius(radius.to_array())?;
                 if !(sigma > 0.0 && sigma.is_finite()) {
-                    return Err(invalid(
-                        "filter sigma",
-                        format!("expected > 0, found {sigma}"),
-                    ));
+                    return Err(invalid("filter sigma", format!("expected > 0, found {sigma}")));
                 }
             }
         }
         for (i, m) in self.materials.iter().enumerate() {
             match m {
                 MaterialDesc::Diffuse { reflectance } => {
-                    check_non_negative(
-                        &format!("reflectance of material {i}"),
-                        &reflectance.to_array(),
-                    )?;
+                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
                 }
             }
         }
@@ -120,10 +106,7 @@ impl SceneDescription {
                 ));
             }
             if let Some(a) = &s.area_light {
-                check_non_negative(
-                    &format!("emitted radiance of shape {i}"),
-                    &a.radiance.to_array(),
-                )?;
+                check_non_negative(&format!("emitted radiance of shape {i}"), &a.radiance.to_array())?;
             }
             match &s.geometry {
                 GeometryDesc::TriangleMesh(m) => {
@@ -134,22 +117,15 @@ impl SceneDescription {
                             format!("{} indices is not a multiple of 3", m.indices.len()),
                         ));
                     }
-                    if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len())
-                    {
+                    if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len()) {
                         return Err(invalid(
                             what,
-                            format!(
-                                "vertex index {bad} out of range ({} vertices)",
-                                m.positions.len()
-                            ),
+                            format!("vertex index {bad} out of range ({} vertices)", m.positions.len()),
                         ));
                     }
                     check_finite(
                         &what,
-                        &m.positions
-                            .iter()
-                            .flat_map(|p| p.to_array())
-                            .collect::<Vec<_>>(),
+                        &m.positions.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
                     )?;
                     if let Some(n) = &m.normals {
                         if n.len() != m.positions.len() {
@@ -158,10 +134,7 @@ impl SceneDescription {
                                 format!("{} normals for {} vertices", n.len(), m.positions.len()),
                             ));
                         }
-                        check_finite(
-                            &what,
-                            &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
-                        )?;
+                        check_finite(&what, &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
                     }
                     if let Some(uv) = &m.uvs {
                         if uv.len() != m.positions.len() {
@@ -188,10 +161,7 @@ impl SceneDescription {
         }
         for (i, l) in self.lights.iter().enumerate() {
             match l {
-                LightDesc::Point {
-                    position,
-                    intensity,
-                } => {
+                LightDesc::Point { position, intensity } => {
                     check_finite(&format!("position of light {i}"), &position.to_array())?;
                     check_non_negative(&format!("intensity of light {i}"), &intensity.to_array())?;
                 }
@@ -205,10 +175,7 @@ fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
     if r.iter().all(|v| *v > 0.0 && v.is_finite()) {
         Ok(())
     } else {
-        Err(invalid(
-            "filter radius",
-            format!("expected > 0, found {r:?}"),
-        ))
+        Err(invalid("filter radius", format!("expected > 0, found {r:?}")))
     }
 }
 
@@ -254,11 +221,7 @@ impl Scene {
                     radius,
                     world_from_object,
                 } => {
-                    vec![Shape::Sphere(Sphere::new(
-                        *radius,
-                        *world_from_object,
-                        s.flip_normals,
-                    ))]
+                    vec![Shape::Sphere(Sphere::new(*radius, *world_from_object, s.flip_normals))]
                 }
             };
             for shape in shapes {
@@ -279,19 +242,12 @@ impl Scene {
         }
         for l in &desc.lights {
             match *l {
-                LightDesc::Point {
-                    position,
-                    intensity,
-                } => lights.push(Light::Point(PointLight {
-                    position,
-                    intensity,
-                })),
+                LightDesc::Point { position, intensity } => {
+                    lights.push(Light::Point(PointLight { position, intensity }))
+                }
             }
         }
-        let bounds: Vec<_> = primitives
-            .iter()
-            .map(|p: &Primitive| p.shape.bounds())
-            .collect();
+        let bounds: Vec<_> = primitives.iter().map(|p: &Primitive| p.shape.bounds()).collect();
         let bvh = Bvh::build(&bounds);
         Ok(Self {
             primitives,

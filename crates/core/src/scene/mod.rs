@@ -69,13 +69,8 @@ impl Scene {
                 .intersect(r, t_max)
                 .map(|h| (h.t, (h, ())))
         })?;
-        let si = self.primitives[prim as usize]
-            .shape
-            .interaction(ray, &shape_hit);
-        Some(Hit {
-            si,
-            primitive: prim,
-        })
+        let si = self.primitives[prim as usize].shape.interaction(ray, &shape_hit);
+        Some(Hit { si, primitive: prim })
     }
 
     /// True when nothing blocks `ray` within `(0, t_max)`.

@@ -75,11 +75,7 @@ impl Sphere {
             return None;
         }
         let root = discrim.sqrt();
-        let q = if b < 0.0 {
-            -0.5 * (b - root)
-        } else {
-            -0.5 * (b + root)
-        };
+        let q = if b < 0.0 { -0.5 * (b - root) } else { -0.5 * (b + root) };
         let (mut t0, mut t1) = (
             q / a,
             if q != 0.0 {
@@ -115,8 +111,8 @@ impl Sphere {
         let abs_lin = Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
         let p = m.transform_point3(p_obj);
         // Error through the affine transform (pbrt-v4 eq. 6.28).
-        let p_error = (gamma(3) + 1.0) * (abs_lin * err_obj)
-            + gamma(3) * (abs_lin * p_obj.abs() + m.w_axis.truncate().abs());
+        let p_error =
+            (gamma(3) + 1.0) * (abs_lin * err_obj) + gamma(3) * (abs_lin * p_obj.abs() + m.w_axis.truncate().abs());
         let mut n = self.world_from_object.normal(p_obj).normalize();
         if self.flip_normals {
             n = -n;

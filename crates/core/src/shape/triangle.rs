@@ -85,9 +85,7 @@ impl Triangle {
         let mut e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
         let mut e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
         if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-            let f = |a: f32, b: f32, c: f32, d: f32| {
-                (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32
-            };
+            let f = |a: f32, b: f32, c: f32, d: f32| (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32;
             e0 = f(p1t.x, p2t.y, p1t.y, p2t.x);
             e1 = f(p2t.x, p0t.y, p2t.y, p0t.x);
             e2 = f(p0t.x, p1t.y, p0t.y, p1t.x);
@@ -122,15 +120,11 @@ impl Triangle {
         let delta_y = gamma(5) * (max_yt + max_zt);
         let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
         let max_e = Vec3::new(e0, e1, e2).abs().max_element();
-        let delta_t =
-            3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+        let delta_t = 3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
         if t <= delta_t {
             return None;
         }
-        Some(ShapeHit {
-            t,
-            data: [b0, b1, b2],
-        })
+        Some(ShapeHit { t, data: [b0, b1, b2] })
     }
 
     /// The interaction at barycentrics `b`.

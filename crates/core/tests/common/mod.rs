@@ -11,10 +11,7 @@ use mcrender_core::scene::*;
 pub fn empty_scene() -> SceneDescription {
     SceneDescription {
         camera: CameraDesc::default(),
-        film: FilmDesc {
-            width: 4,
-            height: 4,
-        },
+        film: FilmDesc { width: 4, height: 4 },
         filter: FilterDesc::Box {
             radius: Vec2::splat(0.5),
         },
@@ -40,9 +37,7 @@ pub fn inside_sphere_scene(
     inward: bool,
 ) -> SceneDescription {
     let mut d = empty_scene();
-    d.materials.push(MaterialDesc::Diffuse {
-        reflectance: albedo,
-    });
+    d.materials.push(MaterialDesc::Diffuse { reflectance: albedo });
     d.camera.fov_degrees = 60.0;
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::Sphere {
@@ -108,10 +103,8 @@ pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) 
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::Sphere {
             radius: 1.0,
-            world_from_object: Transform::new(
-                Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r)),
-            )
-            .unwrap(),
+            world_from_object: Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r)))
+                .unwrap(),
         },
         material: 0,
         area_light: Some(AreaLightDesc {
@@ -144,13 +137,7 @@ pub fn assert_mean_radiance(d: &SceneDescription, expected: Rgb) {
     let out = render_desc(d);
     let n = out.film.pixels().len() as f64;
     for c in 0..3 {
-        let mean: f64 = out
-            .film
-            .pixels()
-            .iter()
-            .map(|p| f64::from(p.mean()[c]))
-            .sum::<f64>()
-            / n;
+        let mean: f64 = out.film.pixels().iter().map(|p| f64::from(p.mean()[c])).sum::<f64>() / n;
         let var: f64 = out
             .film
             .pixels()

@@ -60,10 +60,7 @@ fn builds_from_the_description() {
     });
     assert!(matches!(f, Filter::Triangle(_)));
     assert_eq!(f.radius(), Vec2::splat(2.0));
-    assert_eq!(
-        Filter::new(&FilterDesc::default()).radius(),
-        Vec2::splat(1.5)
-    );
+    assert_eq!(Filter::new(&FilterDesc::default()).radius(), Vec2::splat(1.5));
 }
 
 #[test]
@@ -84,11 +81,7 @@ fn values_and_integrals() {
             f.integral()
         );
         let r = f.radius();
-        for p in [
-            Vec2::new(r.x * 1.01, 0.0),
-            Vec2::new(0.0, -r.y * 1.01),
-            r * 2.0,
-        ] {
+        for p in [Vec2::new(r.x * 1.01, 0.0), Vec2::new(0.0, -r.y * 1.01), r * 2.0] {
             assert_eq!(f.evaluate(p), 0.0, "{name} at {p}");
             assert_eq!(f.pdf(p), 0.0, "{name} at {p}");
         }
@@ -125,17 +118,11 @@ fn weights_average_to_one_and_reproduce_the_filter() {
         let s = samples(&f, n);
         let mean = s.iter().map(|s| f64::from(s.weight)).sum::<f64>() / n as f64;
         assert!((mean - 1.0).abs() < 2e-3, "{name}: mean weight {mean}");
-        assert!(
-            s.iter().all(|s| s.weight > 0.0 && s.weight.is_finite()),
-            "{name}"
-        );
+        assert!(s.iter().all(|s| s.weight > 0.0 && s.weight.is_finite()), "{name}");
         let h = |p: Vec2| f64::from(p.x * p.x + 0.5 * p.y + 1.0);
         let estimate = s.iter().map(|s| f64::from(s.weight) * h(s.p)).sum::<f64>() / n as f64;
         let exact = integrate(&f, h) / f64::from(f.integral());
-        assert!(
-            (estimate / exact - 1.0).abs() < 5e-3,
-            "{name}: {estimate} vs {exact}"
-        );
+        assert!((estimate / exact - 1.0).abs() < 5e-3, "{name}: {estimate} vs {exact}");
     }
 }
 
@@ -147,27 +134,14 @@ fn gaussian_weights_are_bounded_and_near_one() {
         let s = samples(g, 100_000);
         let mut deviation = 0.0;
         for s in &s {
-            assert!(
-                s.weight > 0.0 && s.weight <= 4.0,
-                "{name}: {}: {}",
-                s.p,
-                s.weight
-            );
+            assert!(s.weight > 0.0 && s.weight <= 4.0, "{name}: {}: {}", s.p, s.weight);
             if s.p.abs().max_element() < 0.5 * g.radius().min_element() {
-                assert!(
-                    (s.weight - 1.0).abs() < 0.08,
-                    "{name}: {}: {}",
-                    s.p,
-                    s.weight
-                );
+                assert!((s.weight - 1.0).abs() < 0.08, "{name}: {}: {}", s.p, s.weight);
             }
             deviation += (s.weight - 1.0).abs();
         }
         let mean_deviation = deviation / s.len() as f32;
-        assert!(
-            mean_deviation < 0.03,
-            "{name}: mean |w - 1| = {mean_deviation}"
-        );
+        assert!(mean_deviation < 0.03, "{name}: mean |w - 1| = {mean_deviation}");
     }
 }
 
@@ -184,9 +158,9 @@ fn chi2_filters() {
             bins: UVec2::new(16, 16),
         };
         let test = Chi2Test::new(1_000_000, suite_seed()).with_test_count(list.len() as u32);
-        let report =
-            test.with_integration_panels(16)
-                .rect(grid, |u, _| Some(f.sample(u).p), |p| f.pdf(p));
+        let report = test
+            .with_integration_panels(16)
+            .rect(grid, |u, _| Some(f.sample(u).p), |p| f.pdf(p));
         assert!(report.passes(SIGNIFICANCE), "{name}:\n{report}");
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,

@@ -52,10 +52,7 @@ impl TriangleFilter {
     #[inline]
     #[must_use]
     pub fn sample(&self, u: Vec2) -> FilterSample {
-        let p = Vec2::new(
-            sample_tent(u.x, self.radius.x),
-            sample_tent(u.y, self.radius.y),
-        );
+        let p = Vec2::new(sample_tent(u.x, self.radius.x), sample_tent(u.y, self.radius.y));
         FilterSample { p, weight: 1.0 }
     }
 

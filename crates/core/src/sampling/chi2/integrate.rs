@@ -34,13 +34,7 @@ pub(crate) fn integrate_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: u32, 
 /// Integral of `f(x, y)` over [x0, x1] x [y0, y1]: the outer integral over `y` (panels
 /// accurate to about `tol`) of inner integrals over `x` (accurate enough that their errors,
 /// integrated over `y`, stay well below `tol`); `panels` initial panels per axis.
-pub(crate) fn integrate_2d(
-    f: &dyn Fn(f64, f64) -> f64,
-    x: [f64; 2],
-    y: [f64; 2],
-    panels: u32,
-    tol: f64,
-) -> f64 {
+pub(crate) fn integrate_2d(f: &dyn Fn(f64, f64) -> f64, x: [f64; 2], y: [f64; 2], panels: u32, tol: f64) -> f64 {
     let inner_tol = 0.01 * tol / (y[1] - y[0]);
     let g = |yv: f64| integrate_1d(&|xv| f(xv, yv), x[0], x[1], panels, inner_tol);
     integrate_1d(&g, y[0], y[1], panels, tol)
@@ -55,15 +49,7 @@ fn simpson(h: f64, f0: f64, fm: f64, f1: f64) -> f64 {
 /// One step of adaptive Simpson (Lyness 1969): compare the panel estimate `whole` with the
 /// sum of its two halves; accept when they agree to `15 tol` (with Richardson's correction
 /// `(halves - whole) / 15`), otherwise refine both halves.
-fn refine(
-    f: &dyn Fn(f64) -> f64,
-    a: f64,
-    b: f64,
-    fs: [f64; 3],
-    whole: f64,
-    tol: f64,
-    depth: u32,
-) -> f64 {
+fn refine(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fs: [f64; 3], whole: f64, tol: f64, depth: u32) -> f64 {
     let [fa, fm, fb] = fs;
     let m = 0.5 * (a + b);
     let (flm, frm) = (f(0.5 * (a + m)), f(0.5 * (m + b)));
@@ -73,8 +59,7 @@ fn refine(
     if depth == 0 || delta.abs() <= 15.0 * tol || !delta.is_finite() {
         return left + right + delta / 15.0;
     }
-    refine(f, a, m, [fa, flm, fm], left, tol, depth - 1)
-        + refine(f, m, b, [fm, frm, fb], right, tol, depth - 1)
+    refine(f, a, m, [fa, flm, fm], left, tol, depth - 1) + refine(f, m, b, [fm, frm, fb], right, tol, depth - 1)
 }
 
 #[cfg(test)]
@@ -117,10 +102,6 @@ mod tests {
         let v = integrate_1d(&f, -1.5, 1.5, 500, 1e-12);
         assert!((v - exact).abs() < 1e-9, "{}", v - exact);
         let v = integrate_1d(&f, -1.5, 1.5, 8, 1e-10);
-        assert!(
-            (v - exact).abs() > 1e-5,
-            "aliasing is expected: {}",
-            v - exact
-        );
+        assert!((v - exact).abs() > 1e-5, "aliasing is expected: {}", v - exact);
     }
 }

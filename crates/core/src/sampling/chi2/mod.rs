@@ -28,8 +28,8 @@ mod stats;
 
 pub use report::{Chi2Report, Histogram};
 pub use stats::{
-    chi_square_p_value, ln_gamma, pooled_statistic, regularized_gamma_p, regularized_gamma_q,
-    sidak_alpha, PooledStatistic,
+    chi_square_p_value, ln_gamma, pooled_statistic, regularized_gamma_p, regularized_gamma_q, sidak_alpha,
+    PooledStatistic,
 };
 
 use integrate::{integrate_1d, integrate_2d};
@@ -199,11 +199,7 @@ impl Chi2Test {
         // Integrand over (phi, z): the area element of the sphere is dz dphi.
         let integrand = |phi: f64, z: f64| {
             let r = (1.0 - z * z).max(0.0).sqrt();
-            f64::from(pdf(Vec3::new(
-                (r * phi.cos()) as f32,
-                (r * phi.sin()) as f32,
-                z as f32,
-            )))
+            f64::from(pdf(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32)))
         };
         let tol = INTEGRATION_TOLERANCE / (rows * cols) as f64;
         let mut probabilities = Vec::with_capacity(rows * cols);
@@ -211,13 +207,7 @@ impl Chi2Test {
             let z = [edge(-1.0, 1.0, r, rows), edge(-1.0, 1.0, r + 1, rows)];
             for c in 0..cols {
                 let phi = [edge(0.0, TAU, c, cols), edge(0.0, TAU, c + 1, cols)];
-                probabilities.push(integrate_2d(
-                    &integrand,
-                    phi,
-                    z,
-                    self.integration_panels,
-                    tol,
-                ));
+                probabilities.push(integrate_2d(&integrand, phi, z, self.integration_panels, tol));
             }
         }
         let axes = "rows: cos theta from -1 to 1, columns: phi from 0 to 2 pi".to_owned();
@@ -248,15 +238,8 @@ impl Chi2Test {
             let u = Vec2::new(rng.next_f32(), rng.next_f32());
             match sample(u, rng) {
                 None => Tally::Failed,
-                Some(p)
-                    if !p.is_finite()
-                        || p.cmplt(grid.min - slack).any()
-                        || p.cmpgt(grid.max + slack).any() =>
-                {
-                    Tally::Invalid(format!(
-                        "point {p} is outside the grid [{}, {}]",
-                        grid.min, grid.max
-                    ))
+                Some(p) if !p.is_finite() || p.cmplt(grid.min - slack).any() || p.cmpgt(grid.max + slack).any() => {
+                    Tally::Invalid(format!("point {p} is outside the grid [{}, {}]", grid.min, grid.max))
                 }
                 Some(p) => {
                     let t = (p - grid.min) / extent;
@@ -307,10 +290,7 @@ impl Chi2Test {
             match sample(u, rng) {
                 None => Tally::Failed,
                 Some(x) if !x.is_finite() || x < grid.min - slack || x > grid.max + slack => {
-                    Tally::Invalid(format!(
-                        "value {x} is outside the grid [{}, {}]",
-                        grid.min, grid.max
-                    ))
+                    Tally::Invalid(format!("value {x} is outside the grid [{}, {}]", grid.min, grid.max))
                 }
                 Some(x) => Tally::Cell(bin((x - grid.min) / extent, cols)),
             }
@@ -364,12 +344,7 @@ impl Chi2Test {
     }
 
     /// The statistic and report from the counts and the pdf's integral over every cell.
-    fn finish(
-        &self,
-        counts: Counts,
-        probabilities: &[f64],
-        mut histogram: Histogram,
-    ) -> Chi2Report {
+    fn finish(&self, counts: Counts, probabilities: &[f64], mut histogram: Histogram) -> Chi2Report {
         let n = f64::from(self.samples);
         let pdf_integral: f64 = probabilities.iter().sum();
         histogram.observed = counts.cells.iter().map(|&c| f64::from(c)).collect();
@@ -392,12 +367,7 @@ impl Chi2Test {
         // Failures are one more category; a pdf integrating to slightly more than 1 through
         // quadrature error predicts none.
         let h = &report.histogram;
-        let observed: Vec<f64> = h
-            .observed
-            .iter()
-            .copied()
-            .chain([f64::from(counts.failed)])
-            .collect();
+        let observed: Vec<f64> = h.observed.iter().copied().chain([f64::from(counts.failed)]).collect();
         let expected: Vec<f64> = h
             .expected
             .iter()
@@ -410,10 +380,7 @@ impl Chi2Test {
                 report.dof = s.dof;
                 report.p_value = chi_square_p_value(s.statistic, s.dof);
             }
-            None => {
-                report.error =
-                    Some("too few samples: fewer than two cells after pooling".to_owned())
-            }
+            None => report.error = Some("too few samples: fewer than two cells after pooling".to_owned()),
         }
         report
     }
@@ -422,16 +389,9 @@ impl Chi2Test {
     fn defect(&self, counts: &Counts, report: &Chi2Report) -> Option<String> {
         let h = &report.histogram;
         if let Some(what) = &counts.first_invalid {
-            return Some(format!(
-                "{} invalid samples, the first: {what}",
-                counts.invalid
-            ));
+            return Some(format!("{} invalid samples, the first: {what}", counts.invalid));
         }
-        if let Some(i) = h
-            .expected
-            .iter()
-            .position(|e| !(e.is_finite() && *e >= 0.0))
-        {
+        if let Some(i) = h.expected.iter().position(|e| !(e.is_finite() && *e >= 0.0)) {
             return Some(format!(
                 "the pdf integrates to {} in cell [{}, {}]",
                 h.expected[i],

@@ -151,11 +151,7 @@ fn write_table(
 ) -> fmt::Result {
     writeln!(f, "{title}:")?;
     for r in 0..h.rows {
-        for (chunk_index, chunk) in (0..h.cols)
-            .collect::<Vec<_>>()
-            .chunks(MAX_COLUMNS)
-            .enumerate()
-        {
+        for (chunk_index, chunk) in (0..h.cols).collect::<Vec<_>>().chunks(MAX_COLUMNS).enumerate() {
             if chunk_index == 0 {
                 write!(f, "{r:>4} |")?;
             } else {

@@ -150,16 +150,8 @@ pub struct PooledStatistic {
 /// than two cells remain (no degrees of freedom). The caller must reject observed samples
 /// in cells of zero expected count before (no pooling can excuse them).
 #[must_use]
-pub fn pooled_statistic(
-    observed: &[f64],
-    expected: &[f64],
-    min_expected: f64,
-) -> Option<PooledStatistic> {
-    assert_eq!(
-        observed.len(),
-        expected.len(),
-        "one expected count per observed count"
-    );
+pub fn pooled_statistic(observed: &[f64], expected: &[f64], min_expected: f64) -> Option<PooledStatistic> {
+    assert_eq!(observed.len(), expected.len(), "one expected count per observed count");
     let mut order: Vec<usize> = (0..expected.len())
         .filter(|&i| expected[i] > 0.0 || observed[i] > 0.0)
         .collect();
@@ -213,10 +205,7 @@ mod tests {
         for x in [0.01, 0.3, 1.0, 2.5, 7.0, 30.0] {
             // Q(1, x) = e^-x.
             assert!(close(regularized_gamma_q(1.0, x), (-x).exp(), 1e-12), "{x}");
-            assert!(
-                close(regularized_gamma_p(1.0, x), 1.0 - (-x).exp(), 1e-12),
-                "{x}"
-            );
+            assert!(close(regularized_gamma_p(1.0, x), 1.0 - (-x).exp(), 1e-12), "{x}");
         }
         // P(1/2, x) = erf(sqrt(x)).
         let erf = [
@@ -238,30 +227,15 @@ mod tests {
             let sum: f64 = (0..n)
                 .map(|k| (f64::from(k) * f64::ln(x) - x - ln_gamma(f64::from(k) + 1.0)).exp())
                 .sum();
-            assert!(
-                close(regularized_gamma_q(f64::from(n), x), sum, 1e-10),
-                "{x}"
-            );
+            assert!(close(regularized_gamma_q(f64::from(n), x), sum, 1e-10), "{x}");
         }
     }
 
     #[test]
     fn p_values_match_chi_square_tables() {
-        assert!(close(
-            chi_square_p_value(3.841_458_820_694_124, 1),
-            0.05,
-            1e-9
-        ));
-        assert!(close(
-            chi_square_p_value(23.209_251_158_954_356, 10),
-            0.01,
-            1e-9
-        ));
-        assert!(close(
-            chi_square_p_value(135.806_723_171_026_76, 100),
-            0.01,
-            1e-8
-        ));
+        assert!(close(chi_square_p_value(3.841_458_820_694_124, 1), 0.05, 1e-9));
+        assert!(close(chi_square_p_value(23.209_251_158_954_356, 10), 0.01, 1e-9));
+        assert!(close(chi_square_p_value(135.806_723_171_026_76, 100), 0.01, 1e-8));
         // Two degrees of freedom: exp(-x / 2).
         assert!(close(chi_square_p_value(9.0, 2), (-4.5f64).exp(), 1e-12));
         assert_eq!(chi_square_p_value(0.0, 5), 1.0);
@@ -289,8 +263,7 @@ mod tests {
         assert!(pooled_statistic(&[1.0, 2.0], &[1.0, 2.0], 5.0).is_none());
         // A small tail joins the last pooled cell: (0 + 6 vs 1 + 4), then (5 + 3 vs 4.2 + 4.5)
         // which absorbs the tail (7 vs 4.6).
-        let s =
-            pooled_statistic(&[0.0, 6.0, 5.0, 3.0, 7.0], &[1.0, 4.0, 4.2, 4.5, 4.6], 5.0).unwrap();
+        let s = pooled_statistic(&[0.0, 6.0, 5.0, 3.0, 7.0], &[1.0, 4.0, 4.2, 4.5, 4.6], 5.0).unwrap();
         assert_eq!(s.dof, 1);
         let want = 1.0 / 5.0 + (15.0f64 - 13.3).powi(2) / 13.3;
         assert!(close(s.statistic, want, 1e-12), "{}", s.statistic);

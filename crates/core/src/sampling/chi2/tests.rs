@@ -3,8 +3,8 @@
 use super::*;
 use crate::math::INV_PI;
 use crate::sampling::{
-    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_hemisphere,
-    sample_uniform_sphere, uniform_hemisphere_pdf, uniform_sphere_pdf,
+    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_hemisphere, sample_uniform_sphere,
+    uniform_hemisphere_pdf, uniform_sphere_pdf,
 };
 
 const N: u32 = 1_000_000;
@@ -22,11 +22,7 @@ fn accepts_cosine_samples_against_the_cosine_pdf() {
     );
     report.assert_passes(SIGNIFICANCE);
     assert_eq!(report.dof, 100 - 1, "100 cells on the upper hemisphere");
-    assert!(
-        (report.pdf_integral - 1.0).abs() < 1e-6,
-        "{}",
-        report.pdf_integral
-    );
+    assert!((report.pdf_integral - 1.0).abs() < 1e-6, "{}", report.pdf_integral);
 }
 
 #[test]
@@ -53,8 +49,7 @@ fn rejects_a_slightly_biased_warp() {
         let w = sample_uniform_sphere(Vec2::new(u.x.powf(1.05), u.y));
         Some(w)
     };
-    let report =
-        Chi2Test::new(N, 3).sphere(SphereGrid::default(), biased, |_| uniform_sphere_pdf());
+    let report = Chi2Test::new(N, 3).sphere(SphereGrid::default(), biased, |_| uniform_sphere_pdf());
     report.assert_rejects(SIGNIFICANCE);
 }
 
@@ -67,35 +62,20 @@ fn rejects_samples_where_the_pdf_is_zero() {
             0.0
         }
     };
-    let report = Chi2Test::new(10_000, 3).sphere(
-        SphereGrid::default(),
-        |u, _| Some(sample_uniform_sphere(u)),
-        hemisphere,
-    );
+    let report =
+        Chi2Test::new(10_000, 3).sphere(SphereGrid::default(), |u, _| Some(sample_uniform_sphere(u)), hemisphere);
     report.assert_rejects(SIGNIFICANCE);
     assert!(
-        report
-            .error
-            .as_deref()
-            .unwrap_or("")
-            .contains("pdf is zero"),
+        report.error.as_deref().unwrap_or("").contains("pdf is zero"),
         "{report}"
     );
 }
 
 #[test]
 fn rejects_invalid_samples() {
-    let report = Chi2Test::new(1000, 3).sphere(
-        SphereGrid::default(),
-        |_, _| Some(Vec3::new(0.0, 0.0, 2.0)),
-        |_| 1.0,
-    );
+    let report = Chi2Test::new(1000, 3).sphere(SphereGrid::default(), |_, _| Some(Vec3::new(0.0, 0.0, 2.0)), |_| 1.0);
     assert!(
-        report
-            .error
-            .as_deref()
-            .unwrap_or("")
-            .contains("not a unit vector"),
+        report.error.as_deref().unwrap_or("").contains("not a unit vector"),
         "{report}"
     );
     let grid = RectGrid {
@@ -104,10 +84,7 @@ fn rejects_invalid_samples() {
         bins: UVec2::splat(4),
     };
     let report = Chi2Test::new(1000, 3).rect(grid, |u, _| Some(u * 1.5), |_| 1.0);
-    assert!(
-        report.error.as_deref().unwrap_or("").contains("outside"),
-        "{report}"
-    );
+    assert!(report.error.as_deref().unwrap_or("").contains("outside"), "{report}");
     let grid = IntervalGrid {
         min: 0.0,
         max: 1.0,
@@ -120,24 +97,17 @@ fn rejects_invalid_samples() {
 #[test]
 fn failed_samples_must_match_the_missing_pdf_mass() {
     // A sampler that fails 10 % of the time, drawing the decision from the harness's rng.
-    let sometimes =
-        |u: Vec2, rng: &mut Pcg32| (rng.next_f32() >= 0.1).then(|| sample_cosine_hemisphere(u));
-    let report =
-        Chi2Test::new(N, 3).sphere(SphereGrid::default(), sometimes, |w| 0.9 * cosine_pdf(w));
+    let sometimes = |u: Vec2, rng: &mut Pcg32| (rng.next_f32() >= 0.1).then(|| sample_cosine_hemisphere(u));
+    let report = Chi2Test::new(N, 3).sphere(SphereGrid::default(), sometimes, |w| 0.9 * cosine_pdf(w));
     report.assert_passes(SIGNIFICANCE);
     assert!((f64::from(report.failed_samples) / f64::from(N) - 0.1).abs() < 0.002);
     // The same samples against a pdf integrating to 0.95: rejected.
-    let report =
-        Chi2Test::new(N, 3).sphere(SphereGrid::default(), sometimes, |w| 0.95 * cosine_pdf(w));
+    let report = Chi2Test::new(N, 3).sphere(SphereGrid::default(), sometimes, |w| 0.95 * cosine_pdf(w));
     report.assert_rejects(SIGNIFICANCE);
     // Against a pdf integrating to 1: failures are impossible.
     let report = Chi2Test::new(N, 3).sphere(SphereGrid::default(), sometimes, cosine_pdf);
     assert!(
-        report
-            .error
-            .as_deref()
-            .unwrap_or("")
-            .contains("failed samples"),
+        report.error.as_deref().unwrap_or("").contains("failed samples"),
         "{report}"
     );
 }
@@ -220,9 +190,5 @@ fn pdf_integrals_are_accurate_across_discontinuities() {
         }
     };
     let report = Chi2Test::new(1000, 0).rect(grid, |_, _| Some(Vec2::ZERO), disk);
-    assert!(
-        (report.pdf_integral - 1.0).abs() < 1e-5,
-        "{}",
-        report.pdf_integral
-    );
+    assert!((report.pdf_integral - 1.0).abs() < 1e-5, "{}", report.pdf_integral);
 }

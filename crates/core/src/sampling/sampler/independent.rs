@@ -40,8 +40,7 @@ impl IndependentSampler {
     pub fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
         let stream = hash_u64s(&[u64::from(pixel.x), u64::from(pixel.y), self.seed]);
         self.rng.set_sequence(stream, mix_bits(stream));
-        self.rng
-            .advance(i64::from(sample_index) * DIMENSIONS_PER_SAMPLE);
+        self.rng.advance(i64::from(sample_index) * DIMENSIONS_PER_SAMPLE);
     }
 
     /// The next value in [0, 1).

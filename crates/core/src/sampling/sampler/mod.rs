@@ -32,9 +32,7 @@ impl Sampler {
     #[must_use]
     pub fn new(desc: &SamplerDesc) -> Self {
         match desc.kind {
-            SamplerKind::Independent => {
-                Self::Independent(IndependentSampler::new(desc.samples_per_pixel, desc.seed))
-            }
+            SamplerKind::Independent => Self::Independent(IndependentSampler::new(desc.samples_per_pixel, desc.seed)),
         }
     }
 
@@ -123,10 +121,7 @@ mod tests {
         ];
         for other in others {
             // Independent streams agree on a value with probability ~2^-24 per dimension.
-            assert!(
-                base.iter().zip(&other).all(|(a, b)| a != b),
-                "{base:?} vs {other:?}"
-            );
+            assert!(base.iter().zip(&other).all(|(a, b)| a != b), "{base:?} vs {other:?}");
         }
     }
 

@@ -49,17 +49,11 @@ mod tests {
         for cos_max in COS_THETA_MAX {
             for u in unit_square() {
                 let w = sample_uniform_cone(u, cos_max);
-                assert!(
-                    (w.length() - 1.0).abs() < 1e-5 && w.z >= cos_max - 1e-6,
-                    "{u} -> {w}"
-                );
+                assert!((w.length() - 1.0).abs() < 1e-5 && w.z >= cos_max - 1e-6, "{u} -> {w}");
                 let v = invert_uniform_cone(w, cos_max);
                 let du = (v - u).abs();
                 let wrapped = Vec2::new(du.x, du.y.min(1.0 - du.y));
-                assert!(
-                    w.z > 0.99999 || wrapped.max_element() < 2e-4,
-                    "{u} -> {w} -> {v}"
-                );
+                assert!(w.z > 0.99999 || wrapped.max_element() < 2e-4, "{u} -> {w} -> {v}");
             }
         }
     }

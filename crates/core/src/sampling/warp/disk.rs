@@ -64,10 +64,7 @@ pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
 #[inline]
 #[must_use]
 pub fn invert_uniform_disk_polar(p: Vec2) -> Vec2 {
-    Vec2::new(
-        p.length_squared().min(ONE_MINUS_EPSILON),
-        azimuth_fraction(p.x, p.y),
-    )
+    Vec2::new(p.length_squared().min(ONE_MINUS_EPSILON), azimuth_fraction(p.x, p.y))
 }
 
 /// Area pdf of both disk samplers on the unit disk: 1 / pi.
@@ -118,22 +115,17 @@ mod tests {
             let du = (v - u).abs();
             let wrapped = Vec2::new(du.x, du.y.min(1.0 - du.y));
             // The angle is undefined at the centre.
-            assert!(
-                u.x < 1e-4 || wrapped.max_element() < 2e-4,
-                "{u} -> {p} -> {v}"
-            );
+            assert!(u.x < 1e-4 || wrapped.max_element() < 2e-4, "{u} -> {p} -> {v}");
         }
     }
 
     #[test]
     fn chi2_concentric_disk() {
-        let report = Chi2Test::new(1_000_000, suite_seed())
-            .with_test_count(2)
-            .rect(
-                GRID,
-                |u, _| Some(sample_uniform_disk_concentric(u)),
-                disk_pdf,
-            );
+        let report = Chi2Test::new(1_000_000, suite_seed()).with_test_count(2).rect(
+            GRID,
+            |u, _| Some(sample_uniform_disk_concentric(u)),
+            disk_pdf,
+        );
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,
@@ -144,9 +136,11 @@ mod tests {
 
     #[test]
     fn chi2_polar_disk() {
-        let report = Chi2Test::new(1_000_000, suite_seed())
-            .with_test_count(2)
-            .rect(GRID, |u, _| Some(sample_uniform_disk_polar(u)), disk_pdf);
+        let report = Chi2Test::new(1_000_000, suite_seed()).with_test_count(2).rect(
+            GRID,
+            |u, _| Some(sample_uniform_disk_polar(u)),
+            disk_pdf,
+        );
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,

@@ -75,10 +75,7 @@ mod tests {
                 // The azimuth is undefined at the pole and wraps around at 0 = 1.
                 let du = (v - u).abs();
                 let wrapped = Vec2::new(du.x, du.y.min(1.0 - du.y));
-                assert!(
-                    w.z > 0.99999 || wrapped.max_element() < 2e-4,
-                    "{u} -> {w} -> {v}"
-                );
+                assert!(w.z > 0.99999 || wrapped.max_element() < 2e-4, "{u} -> {w} -> {v}");
             }
         }
     }
@@ -98,13 +95,11 @@ mod tests {
                 0.0
             }
         };
-        let report = Chi2Test::new(1_000_000, suite_seed())
-            .with_test_count(2)
-            .sphere(
-                SphereGrid::default(),
-                |u, _| Some(sample_uniform_hemisphere(u)),
-                pdf,
-            );
+        let report = Chi2Test::new(1_000_000, suite_seed()).with_test_count(2).sphere(
+            SphereGrid::default(),
+            |u, _| Some(sample_uniform_hemisphere(u)),
+            pdf,
+        );
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,
@@ -116,13 +111,11 @@ mod tests {
     #[test]
     fn chi2_cosine_hemisphere() {
         let pdf = |w: Vec3| cosine_hemisphere_pdf(w.z);
-        let report = Chi2Test::new(1_000_000, suite_seed())
-            .with_test_count(2)
-            .sphere(
-                SphereGrid::default(),
-                |u, _| Some(sample_cosine_hemisphere(u)),
-                pdf,
-            );
+        let report = Chi2Test::new(1_000_000, suite_seed()).with_test_count(2).sphere(
+            SphereGrid::default(),
+            |u, _| Some(sample_cosine_hemisphere(u)),
+            pdf,
+        );
         report.assert_passes(SIGNIFICANCE);
         assert!(
             (report.pdf_integral - 1.0).abs() < 1e-5,

@@ -15,8 +15,8 @@ pub use disk::{
     sample_uniform_disk_polar, uniform_disk_pdf,
 };
 pub use hemisphere::{
-    cosine_hemisphere_pdf, invert_cosine_hemisphere, invert_uniform_hemisphere,
-    sample_cosine_hemisphere, sample_uniform_hemisphere, uniform_hemisphere_pdf,
+    cosine_hemisphere_pdf, invert_cosine_hemisphere, invert_uniform_hemisphere, sample_cosine_hemisphere,
+    sample_uniform_hemisphere, uniform_hemisphere_pdf,
 };
 pub use sphere::{invert_uniform_sphere, sample_uniform_sphere, uniform_sphere_pdf};
 pub use tent::{invert_tent, sample_tent, tent_pdf};
@@ -30,11 +30,7 @@ use crate::sampling::ONE_MINUS_EPSILON;
 #[inline]
 fn azimuth_fraction(x: f32, y: f32) -> f32 {
     let phi = y.atan2(x);
-    let phi = if phi < 0.0 {
-        phi + std::f32::consts::TAU
-    } else {
-        phi
-    };
+    let phi = if phi < 0.0 { phi + std::f32::consts::TAU } else { phi };
     (phi * INV_2PI).min(ONE_MINUS_EPSILON)
 }
 
@@ -51,9 +47,7 @@ mod test_points {
             .iter()
             .flat_map(|&x| edge.iter().map(move |&y| Vec2::new(x, y)))
             .collect();
-        points.extend(
-            (0..32 * 32).map(|i| Vec2::new((i % 32) as f32 + 0.5, (i / 32) as f32 + 0.5) / 32.0),
-        );
+        points.extend((0..32 * 32).map(|i| Vec2::new((i % 32) as f32 + 0.5, (i / 32) as f32 + 0.5) / 32.0));
         let mut rng = Pcg32::new(1, 2);
         points.extend((0..4096).map(|_| Vec2::new(rng.next_f32(), rng.next_f32())));
         points

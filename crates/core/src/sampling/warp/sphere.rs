@@ -42,10 +42,7 @@ mod tests {
             let v = invert_uniform_sphere(w);
             let du = (v - u).abs();
             let wrapped = Vec2::new(du.x, du.y.min(1.0 - du.y));
-            assert!(
-                w.z.abs() > 0.99999 || wrapped.max_element() < 2e-4,
-                "{u} -> {w} -> {v}"
-            );
+            assert!(w.z.abs() > 0.99999 || wrapped.max_element() < 2e-4, "{u} -> {w} -> {v}");
         }
     }
 

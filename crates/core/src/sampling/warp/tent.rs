@@ -71,13 +71,11 @@ mod tests {
                 max: radius,
                 bins: 50,
             };
-            let report = Chi2Test::new(1_000_000, suite_seed())
-                .with_test_count(2)
-                .interval(
-                    grid,
-                    |u, _| Some(sample_tent(u, radius)),
-                    |x| tent_pdf(x, radius),
-                );
+            let report = Chi2Test::new(1_000_000, suite_seed()).with_test_count(2).interval(
+                grid,
+                |u, _| Some(sample_tent(u, radius)),
+                |x| tent_pdf(x, radius),
+            );
             report.assert_passes(SIGNIFICANCE);
             assert!(
                 (report.pdf_integral - 1.0).abs() < 1e-5,

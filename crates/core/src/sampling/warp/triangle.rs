@@ -44,10 +44,7 @@ mod tests {
     fn barycentrics_are_valid_and_invert() {
         for u in unit_square() {
             let b = sample_uniform_triangle(u);
-            assert!(
-                b.iter().all(|&x| (-1e-6..=1.0).contains(&x)),
-                "{u} -> {b:?}"
-            );
+            assert!(b.iter().all(|&x| (-1e-6..=1.0).contains(&x)), "{u} -> {b:?}");
             assert!((b.iter().sum::<f32>() - 1.0).abs() < 1e-6);
             let v = invert_uniform_triangle(b);
             assert!((v - u).abs().max_element() < 1e-6, "{u} -> {b:?} -> {v}");
@@ -57,11 +54,7 @@ mod tests {
     #[test]
     fn chi2_uniform_triangle_in_the_plane() {
         // An obtuse triangle; p = b0 a + b1 b + b2 c, uniform with density 1 / area inside.
-        let (a, b, c) = (
-            Vec2::new(-0.9, -0.8),
-            Vec2::new(0.9, -0.3),
-            Vec2::new(-0.4, 0.9),
-        );
+        let (a, b, c) = (Vec2::new(-0.9, -0.8), Vec2::new(0.9, -0.3), Vec2::new(-0.4, 0.9));
         let area = 0.5 * (b - a).perp_dot(c - a).abs();
         let inside = |p: Vec2| {
             let d = [
