@@ -110,10 +110,28 @@ fn format_error(what: &str, err: &std::io::Error) -> PlyError {
     PlyError::Format(format!("{what}: {detail}"))
 }
 
-/// `ply-rs` parses header numbers with `unwrap`; reject digit runs it would choke on.
+/// Guard `ply-rs` against headers it handles badly: it parses header numbers with `unwrap`
+/// (so digit runs must be short), and it would read an element without properties forever
+/// (so those must be empty). Every property of every entry takes at least one byte, so
+/// `count * properties` may not exceed the file size either.
 fn check_header_numbers(bytes: &[u8]) -> Result<(), PlyError> {
     let mut reader = Cursor::new(bytes);
     let mut line = Vec::new();
+    // (name, count, number of properties) of the element being declared.
+    let mut element: Option<(String, u64, u64)> = None;
+    let check_element = |e: &Option<(String, u64, u64)>| match e {
+        Some((name, count, 0)) if *count > 0 => Err(PlyError::Format(format!(
+            "element \"{name}\" has {count} entries but no properties"
+        ))),
+        Some((name, count, properties))
+            if count.saturating_mul(*properties) > bytes.len() as u64 =>
+        {
+            Err(PlyError::Format(format!(
+                "element \"{name}\" claims {count} entries, more than the file can hold"
+            )))
+        }
+        _ => Ok(()),
+    };
     loop {
         line.clear();
         let n = reader.read_until(b'\n', &mut line).map_err(PlyError::Io)?;
@@ -129,8 +147,25 @@ fn check_header_numbers(bytes: &[u8]) -> Result<(), PlyError> {
                 ));
             }
         }
-        if line.starts_with(b"end_header") {
-            return Ok(());
+        let text = String::from_utf8_lossy(&line);
+        let words: Vec<&str> = text.split_whitespace().collect();
+        match words.first().copied() {
+            Some("element") => {
+                check_element(&element)?;
+                let name = words.get(1).copied().unwrap_or("").to_string();
+                let count = words
+                    .get(2)
+                    .and_then(|c| c.parse::<u64>().ok())
+                    .unwrap_or(0);
+                element = Some((name, count, 0));
+            }
+            Some("property") => {
+                if let Some(e) = &mut element {
+                    e.2 += 1;
+                }
+            }
+            Some("end_header") => return check_element(&element),
+            _ => {}
         }
     }
 }
@@ -370,6 +405,8 @@ mod tests {
             b"ply\nformat ascii 1.0\nelement vertex 99999999999999999999999999\nend_header\n",
             b"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\n",
             b"\xff\xfe\x00garbage",
+            b"ply\nformat ascii 1.0\nelement vertex 4000000000\nend_header\n",
+            b"ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nend_header\n",
         ] {
             assert!(read_ply_bytes(src).is_err());
         }

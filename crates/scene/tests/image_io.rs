@@ -10,15 +10,25 @@ fn gradient(width: u32, height: u32) -> ImageRgb {
     let pixels = (0..width * height)
         .map(|i| {
             let (x, y) = (i % width, i / width);
-            Rgb::new(x as f32 * 0.25, y as f32 * 1.5, 1e-3 + (x * y) as f32 * 100.0)
+            Rgb::new(
+                x as f32 * 0.25,
+                y as f32 * 1.5,
+                1e-3 + (x * y) as f32 * 100.0,
+            )
         })
         .collect();
-    ImageRgb { width, height, pixels }
+    ImageRgb {
+        width,
+        height,
+        pixels,
+    }
 }
 
 fn files_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> =
-        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
     names.sort();
     names
 }
@@ -55,10 +65,18 @@ fn exr_layers_keep_the_main_image_readable() {
 fn png_is_srgb_encoded() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("out.png");
-    let img = ImageRgb { width: 3, height: 2, pixels: vec![
-        Rgb::splat(0.5), Rgb::new(0.0, 1.0, 2.0), Rgb::new(-1.0, 0.0031308, 0.2),
-        Rgb::splat(0.0), Rgb::splat(1.0), Rgb::new(f32::NAN, 0.5, 0.5),
-    ] };
+    let img = ImageRgb {
+        width: 3,
+        height: 2,
+        pixels: vec![
+            Rgb::splat(0.5),
+            Rgb::new(0.0, 1.0, 2.0),
+            Rgb::new(-1.0, 0.0031308, 0.2),
+            Rgb::splat(0.0),
+            Rgb::splat(1.0),
+            Rgb::new(f32::NAN, 0.5, 0.5),
+        ],
+    };
     write_image(&path, &img).unwrap();
     let read = image::open(&path).unwrap().to_rgb8();
     assert_eq!(read.dimensions(), (3, 2));
@@ -77,16 +95,39 @@ fn failed_writes_leave_no_file() {
 
     let err = write_image(&dir.path().join("missing/out.png"), &img).unwrap_err();
     assert!(matches!(err, ImageError::Io { .. }), "{err}");
-    assert!(err.to_string().ends_with("No such file or directory"), "{err}");
+    assert!(
+        err.to_string().ends_with("No such file or directory"),
+        "{err}"
+    );
 
     let err = write_image(&dir.path().join("out.jpg"), &img).unwrap_err();
-    assert_eq!(err.to_string(), format!("{}: unsupported image format \"jpg\" (use .png or .exr)", dir.path().join("out.jpg").display()));
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "{}: unsupported image format \"jpg\" (use .png or .exr)",
+            dir.path().join("out.jpg").display()
+        )
+    );
 
-    let bad = ImageRgb { width: 3, height: 3, pixels: img.pixels.clone() };
-    assert!(matches!(write_image(&dir.path().join("bad.exr"), &bad), Err(ImageError::InvalidImage { .. })));
-    assert!(matches!(write_image(&dir.path().join("bad.png"), &ImageRgb::new(0, 4)), Err(ImageError::InvalidImage { .. })));
+    let bad = ImageRgb {
+        width: 3,
+        height: 3,
+        pixels: img.pixels.clone(),
+    };
+    assert!(matches!(
+        write_image(&dir.path().join("bad.exr"), &bad),
+        Err(ImageError::InvalidImage { .. })
+    ));
+    assert!(matches!(
+        write_image(&dir.path().join("bad.png"), &ImageRgb::new(0, 4)),
+        Err(ImageError::InvalidImage { .. })
+    ));
 
-    assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
+    assert!(
+        files_in(dir.path()).is_empty(),
+        "{:?}",
+        files_in(dir.path())
+    );
 }
 
 #[test]
@@ -103,7 +144,10 @@ fn overwriting_replaces_the_whole_file() {
 #[test]
 fn reading_a_missing_or_bogus_exr_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    assert!(matches!(read_exr(&dir.path().join("none.exr")), Err(ImageError::Io { .. })));
+    assert!(matches!(
+        read_exr(&dir.path().join("none.exr")),
+        Err(ImageError::Io { .. })
+    ));
     std::fs::write(dir.path().join("bogus.exr"), b"not an exr").unwrap();
     assert!(read_exr(&dir.path().join("bogus.exr")).is_err());
 }

@@ -20,7 +20,9 @@ fn load(src: &str) -> LoadedScene {
 /// The world-from-object matrix of the only (or first) sphere.
 fn sphere_matrix(s: &LoadedScene, i: usize) -> Mat4 {
     match &s.description.shapes[i].geometry {
-        GeometryDesc::Sphere { world_from_object, .. } => world_from_object.m,
+        GeometryDesc::Sphere {
+            world_from_object, ..
+        } => world_from_object.m,
         other => panic!("not a sphere: {other:?}"),
     }
 }
@@ -41,13 +43,19 @@ const TRIANGLE: &str = "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0
 #[test]
 fn translate_scale_rotate_compose_in_order() {
     let s = load("WorldBegin\nTranslate 1 2 3\nShape \"sphere\"\nScale 2 3 4\nShape \"sphere\"\nRotate 90 0 0 1\nShape \"sphere\"");
-    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
+    assert_eq!(
+        sphere_matrix(&s, 0),
+        Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+    );
     // CTM = T * S: scale first, then translate.
     let ts = sphere_matrix(&s, 1);
     assert_eq!(ts.transform_point3(Vec3::ONE), Vec3::new(3.0, 5.0, 7.0));
     // CTM = T * S * R: (1, 0, 0) -> R -> (0, 1, 0) -> S -> (0, 3, 0) -> T -> (1, 5, 3).
     let tsr = sphere_matrix(&s, 2);
-    assert!(close(tsr.transform_point3(Vec3::X), Vec3::new(1.0, 5.0, 3.0)));
+    assert!(close(
+        tsr.transform_point3(Vec3::X),
+        Vec3::new(1.0, 5.0, 3.0)
+    ));
 }
 
 #[test]
@@ -57,8 +65,14 @@ fn transform_replaces_and_concat_transform_multiplies() {
         "WorldBegin\nTranslate 5 5 5\nTransform [1 0 0 0  0 1 0 0  0 0 1 0  1 2 3 1]\nShape \"sphere\"\n\
          ConcatTransform [2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1]\nShape \"sphere\"\nIdentity\nShape \"sphere\"",
     );
-    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
-    assert_eq!(sphere_matrix(&s, 1).transform_point3(Vec3::X), Vec3::new(3.0, 2.0, 3.0));
+    assert_eq!(
+        sphere_matrix(&s, 0),
+        Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+    );
+    assert_eq!(
+        sphere_matrix(&s, 1).transform_point3(Vec3::X),
+        Vec3::new(3.0, 2.0, 3.0)
+    );
     assert_eq!(sphere_matrix(&s, 2), Mat4::IDENTITY);
 }
 
@@ -73,7 +87,10 @@ fn look_at_sets_the_camera() {
     // pbrt's camera space is left-handed: +x is to the right when looking down +z.
     assert!(close(w.vector(Vec3::X), -Vec3::X));
     assert!((w.m * w.m_inv).abs_diff_eq(Mat4::IDENTITY, 1e-5));
-    assert_eq!((cam.fov_degrees, cam.lens_radius, cam.focal_distance), (30.0, 0.1, 5.0));
+    assert_eq!(
+        (cam.fov_degrees, cam.lens_radius, cam.focal_distance),
+        (30.0, 0.1, 5.0)
+    );
     assert_eq!(cam.screen_window, None);
 }
 
@@ -81,7 +98,10 @@ fn look_at_sets_the_camera() {
 fn world_begin_resets_the_ctm() {
     let s = load("Translate 1 0 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"");
     assert_eq!(sphere_matrix(&s, 0), Mat4::IDENTITY);
-    assert!(close(s.description.camera.world_from_camera.point(Vec3::ZERO), Vec3::new(-1.0, 0.0, 0.0)));
+    assert!(close(
+        s.description.camera.world_from_camera.point(Vec3::ZERO),
+        Vec3::new(-1.0, 0.0, 0.0)
+    ));
 }
 
 #[test]
@@ -94,17 +114,37 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     let d = &s.description;
     let inner = &d.shapes[0];
     assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::X));
-    assert_eq!(d.materials[inner.material as usize], MaterialDesc::Diffuse { reflectance: Rgb::new(0.1, 0.2, 0.3) });
-    assert_eq!(inner.area_light, Some(AreaLightDesc { radiance: Rgb::new(2.0, 4.0, 6.0), two_sided: true }));
+    assert_eq!(
+        d.materials[inner.material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::new(0.1, 0.2, 0.3)
+        }
+    );
+    assert_eq!(
+        inner.area_light,
+        Some(AreaLightDesc {
+            radiance: Rgb::new(2.0, 4.0, 6.0),
+            two_sided: true
+        })
+    );
     assert!(inner.flip_normals);
     let outer = &d.shapes[1];
     assert_eq!(sphere_matrix(&s, 1), Mat4::IDENTITY);
-    assert_eq!(d.materials[outer.material as usize], MaterialDesc::Diffuse { reflectance: Rgb::splat(0.5) });
+    assert_eq!(
+        d.materials[outer.material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::splat(0.5)
+        }
+    );
     assert_eq!(outer.area_light, None);
     assert!(!outer.flip_normals);
     assert_eq!(sphere_matrix(&s, 2), Mat4::from_translation(Vec3::Y));
     assert_eq!(sphere_matrix(&s, 3), Mat4::IDENTITY);
-    assert!(s.warnings.iter().any(|w| w.starts_with("scene.pbrt:10:1: warning: TransformBegin/TransformEnd are deprecated")));
+    assert!(s
+        .warnings
+        .iter()
+        .any(|w| w
+            .starts_with("scene.pbrt:10:1: warning: TransformBegin/TransformEnd are deprecated")));
 }
 
 #[test]
@@ -113,7 +153,12 @@ fn flip_normals_is_reverse_orientation_xor_handedness() {
         "WorldBegin\n{TRIANGLE}\nAttributeBegin\nScale -1 1 1\n{TRIANGLE}\nReverseOrientation\n{TRIANGLE}\nAttributeEnd\n\
          ReverseOrientation\n{TRIANGLE}"
     ));
-    let flips: Vec<bool> = s.description.shapes.iter().map(|s| s.flip_normals).collect();
+    let flips: Vec<bool> = s
+        .description
+        .shapes
+        .iter()
+        .map(|s| s.flip_normals)
+        .collect();
     assert_eq!(flips, vec![false, true, false, true]);
 }
 
@@ -140,7 +185,13 @@ fn three_vertices_need_no_indices_and_legacy_uv_warns() {
     let m = mesh(&s.description.shapes[0]);
     assert_eq!(m.indices, vec![0, 1, 2]);
     assert_eq!(m.uvs.as_ref().unwrap()[1], Vec2::X);
-    assert!(s.warnings.iter().any(|w| w.contains("\"float uv\" is pbrt-v3 syntax")), "{:?}", s.warnings);
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.contains("\"float uv\" is pbrt-v3 syntax")),
+        "{:?}",
+        s.warnings
+    );
 }
 
 #[test]
@@ -156,7 +207,12 @@ fn named_materials_are_resolved_and_deduplicated() {
     assert_eq!(d.shapes[0].material, d.shapes[1].material);
     assert_eq!(d.shapes[2].material, d.shapes[3].material);
     assert_ne!(d.shapes[0].material, d.shapes[2].material);
-    assert_eq!(d.materials[d.shapes[2].material as usize], MaterialDesc::Diffuse { reflectance: Rgb::splat(0.5) });
+    assert_eq!(
+        d.materials[d.shapes[2].material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::splat(0.5)
+        }
+    );
 }
 
 #[test]
@@ -166,7 +222,13 @@ fn point_light_is_transformed_and_scaled() {
          LightSource \"point\" \"float power\" 100",
     );
     let lights = &s.description.lights;
-    assert_eq!(lights[0], LightDesc::Point { position: Vec3::new(1.0, 2.0, 0.0), intensity: Rgb::new(2.0, 4.0, 6.0) });
+    assert_eq!(
+        lights[0],
+        LightDesc::Point {
+            position: Vec3::new(1.0, 2.0, 0.0),
+            intensity: Rgb::new(2.0, 4.0, 6.0)
+        }
+    );
     let LightDesc::Point { intensity, .. } = lights[1];
     assert!((intensity.r - 100.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-4);
 }
@@ -182,13 +244,22 @@ fn options_are_read() {
     let d = &s.description;
     assert_eq!((d.film.width, d.film.height), (320, 200));
     assert_eq!(s.output_filename.as_deref(), Some("out.exr"));
-    assert_eq!(d.filter, FilterDesc::Gaussian { radius: Vec2::new(2.0, 3.0), sigma: 0.7 });
+    assert_eq!(
+        d.filter,
+        FilterDesc::Gaussian {
+            radius: Vec2::new(2.0, 3.0),
+            sigma: 0.7
+        }
+    );
     assert_eq!((d.sampler.samples_per_pixel, d.sampler.seed), (7, 42));
     assert_eq!(d.integrator.max_depth, 3);
     assert_eq!(d.camera.screen_window, Some([-1.0, 1.0, -0.5, 0.5]));
     let warnings = s.warnings.join("\n");
     assert!(warnings.contains("scene.pbrt:1:92: warning: parameter \"float iso\" of Film \"rgb\" is not supported and was ignored"), "{warnings}");
-    assert!(warnings.contains("integrator \"volpath\" renders as \"path\""), "{warnings}");
+    assert!(
+        warnings.contains("integrator \"volpath\" renders as \"path\""),
+        "{warnings}"
+    );
     assert!(warnings.contains("the scene has no lights"), "{warnings}");
 }
 
@@ -201,19 +272,44 @@ fn defaults_match_pbrt() {
     assert_eq!(d.sampler.samples_per_pixel, 16);
     assert_eq!(d.camera.fov_degrees, 90.0);
     assert_eq!(d.camera.world_from_camera.m, Mat4::IDENTITY);
-    let GeometryDesc::Sphere { radius, .. } = d.shapes[0].geometry else { panic!() };
+    let GeometryDesc::Sphere { radius, .. } = d.shapes[0].geometry else {
+        panic!()
+    };
     assert_eq!(radius, 1.0);
 }
 
 #[test]
 fn filter_defaults_and_fallbacks() {
     let radius = |src: &str| load(&format!("{src}\nWorldBegin")).description.filter;
-    assert_eq!(radius("PixelFilter \"box\""), FilterDesc::Box { radius: Vec2::splat(0.5) });
-    assert_eq!(radius("PixelFilter \"triangle\""), FilterDesc::Triangle { radius: Vec2::splat(2.0) });
-    assert_eq!(radius("PixelFilter \"gaussian\""), FilterDesc::Gaussian { radius: Vec2::splat(1.5), sigma: 0.5 });
+    assert_eq!(
+        radius("PixelFilter \"box\""),
+        FilterDesc::Box {
+            radius: Vec2::splat(0.5)
+        }
+    );
+    assert_eq!(
+        radius("PixelFilter \"triangle\""),
+        FilterDesc::Triangle {
+            radius: Vec2::splat(2.0)
+        }
+    );
+    assert_eq!(
+        radius("PixelFilter \"gaussian\""),
+        FilterDesc::Gaussian {
+            radius: Vec2::splat(1.5),
+            sigma: 0.5
+        }
+    );
     let s = load("PixelFilter \"mitchell\" \"float B\" 0.3\nWorldBegin");
-    assert_eq!(s.description.filter, FilterDesc::Gaussian { radius: Vec2::splat(1.5), sigma: 0.5 });
-    assert!(s.warnings[0].contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
+    assert_eq!(
+        s.description.filter,
+        FilterDesc::Gaussian {
+            radius: Vec2::splat(1.5),
+            sigma: 0.5
+        }
+    );
+    assert!(s.warnings[0]
+        .contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
 }
 
 #[test]
@@ -221,7 +317,9 @@ fn samplers_map_to_independent_with_warnings() {
     let s = load("Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 5\nOption \"seed\" 9\nWorldBegin");
     assert_eq!(s.description.sampler.samples_per_pixel, 15);
     assert_eq!(s.description.sampler.seed, 9);
-    assert!(s.warnings[0].ends_with("warning: sampler \"stratified\" is not implemented yet; using \"independent\""));
+    assert!(s.warnings[0].ends_with(
+        "warning: sampler \"stratified\" is not implemented yet; using \"independent\""
+    ));
     let s = load("Sampler \"independent\"\nWorldBegin");
     assert!(s.warnings.iter().all(|w| !w.contains("sampler")));
 }
@@ -247,13 +345,18 @@ fn coordinate_systems() {
         "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nTranslate 1 0 0\nCoordinateSystem \"moved\"\n\
          Identity\nCoordSysTransform \"camera\"\nShape \"sphere\"\nCoordSysTransform \"moved\"\nShape \"sphere\"",
     );
-    assert!(close(sphere_matrix(&s, 0).transform_point3(Vec3::ZERO), Vec3::new(0.0, 0.0, -5.0)));
+    assert!(close(
+        sphere_matrix(&s, 0).transform_point3(Vec3::ZERO),
+        Vec3::new(0.0, 0.0, -5.0)
+    ));
     assert_eq!(sphere_matrix(&s, 1), Mat4::from_translation(Vec3::X));
 }
 
 #[test]
 fn unused_parameters_warn_with_their_location() {
-    let s = load("WorldBegin\nShape \"sphere\" \"float radius\" 2\n  \"float foo\" 1 \"float zmax\" 0.5");
+    let s = load(
+        "WorldBegin\nShape \"sphere\" \"float radius\" 2\n  \"float foo\" 1 \"float zmax\" 0.5",
+    );
     assert!(s.warnings.contains(&"scene.pbrt:3:3: warning: parameter \"float foo\" of Shape \"sphere\" is not supported and was ignored".to_string()), "{:?}", s.warnings);
     assert!(s.warnings.iter().any(|w| w.starts_with("scene.pbrt:3:17: warning: parameter \"float zmax\" of Shape \"sphere\" is not supported yet; rendering the full sphere")), "{:?}", s.warnings);
 }
@@ -262,9 +365,21 @@ fn unused_parameters_warn_with_their_location() {
 fn include_is_relative_to_the_scene_directory_and_errors_name_the_included_file() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("sub")).unwrap();
-    std::fs::write(dir.path().join("sub/shapes.pbrt"), "Translate 0 0 1\nShape \"sphere\"\nInclude \"sub/more.pbrt\"\n").unwrap();
-    std::fs::write(dir.path().join("sub/more.pbrt"), "Shape \"sphere\" \"float radius\" 3\n").unwrap();
-    std::fs::write(dir.path().join("main.pbrt"), "WorldBegin\nAttributeBegin\nInclude \"sub/shapes.pbrt\"\nAttributeEnd\nShape \"sphere\"\n").unwrap();
+    std::fs::write(
+        dir.path().join("sub/shapes.pbrt"),
+        "Translate 0 0 1\nShape \"sphere\"\nInclude \"sub/more.pbrt\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("sub/more.pbrt"),
+        "Shape \"sphere\" \"float radius\" 3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("main.pbrt"),
+        "WorldBegin\nAttributeBegin\nInclude \"sub/shapes.pbrt\"\nAttributeEnd\nShape \"sphere\"\n",
+    )
+    .unwrap();
     let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
     assert_eq!(s.description.shapes.len(), 3);
     assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::Z));
@@ -273,10 +388,18 @@ fn include_is_relative_to_the_scene_directory_and_errors_name_the_included_file(
     std::fs::write(dir.path().join("sub/more.pbrt"), "\n  Shape \"cube\"\n").unwrap();
     let err = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_err();
     let included = dir.path().join("sub/more.pbrt");
-    assert_eq!(err.to_string(), format!("{}:2:3: unknown shape \"cube\"", included.display()));
+    assert_eq!(
+        err.to_string(),
+        format!("{}:2:3: unknown shape \"cube\"", included.display())
+    );
 
     // load_str resolves includes against its base directory.
-    let s = load_str("WorldBegin\nImport \"sub/shapes.pbrt\"", "inline", &dir.path().join("")).unwrap_err();
+    let s = load_str(
+        "WorldBegin\nImport \"sub/shapes.pbrt\"",
+        "inline",
+        &dir.path().join(""),
+    )
+    .unwrap_err();
     assert!(s.to_string().contains("unknown shape \"cube\""));
 }
 
@@ -286,7 +409,11 @@ fn include_falls_back_to_the_including_file_directory() {
     std::fs::create_dir(dir.path().join("sub")).unwrap();
     std::fs::write(dir.path().join("sub/a.pbrt"), "Include \"b.pbrt\"\n").unwrap();
     std::fs::write(dir.path().join("sub/b.pbrt"), "Shape \"sphere\"\n").unwrap();
-    std::fs::write(dir.path().join("main.pbrt"), "WorldBegin\nInclude \"sub/a.pbrt\"\n").unwrap();
+    std::fs::write(
+        dir.path().join("main.pbrt"),
+        "WorldBegin\nInclude \"sub/a.pbrt\"\n",
+    )
+    .unwrap();
     let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
     assert_eq!(s.description.shapes.len(), 1);
 }

@@ -19,30 +19,63 @@ fn kind(src: &str) -> SceneErrorKind {
 
 #[test]
 fn bad_number() {
-    assert_eq!(error("WorldBegin\nTranslate 1 abc 3"), "scene.pbrt:2:13: expected a number, found \"abc\"");
-    assert_eq!(error("Translate 1 2"), "scene.pbrt:1:14: expected a number, found end of file");
-    assert_eq!(error("Scale 1 \"2\" 3"), "scene.pbrt:1:9: expected a number, found string \"2\"");
-    assert_eq!(error("Rotate 1e39 0 0 1"), "scene.pbrt:1:8: expected a finite number, found \"1e39\"");
+    assert_eq!(
+        error("WorldBegin\nTranslate 1 abc 3"),
+        "scene.pbrt:2:13: expected a number, found \"abc\""
+    );
+    assert_eq!(
+        error("Translate 1 2"),
+        "scene.pbrt:1:14: expected a number, found end of file"
+    );
+    assert_eq!(
+        error("Scale 1 \"2\" 3"),
+        "scene.pbrt:1:9: expected a number, found string \"2\""
+    );
+    assert_eq!(
+        error("Rotate 1e39 0 0 1"),
+        "scene.pbrt:1:8: expected a finite number, found \"1e39\""
+    );
 }
 
 #[test]
 fn unterminated_string() {
-    assert_eq!(error("WorldBegin\nShape \"sphere\n\"float radius\" 1"), "scene.pbrt:2:7: unterminated string");
+    assert_eq!(
+        error("WorldBegin\nShape \"sphere\n\"float radius\" 1"),
+        "scene.pbrt:2:7: unterminated string"
+    );
     assert_eq!(kind("Film \"rgb"), SceneErrorKind::Syntax);
 }
 
 #[test]
 fn unknown_directive() {
-    assert_eq!(error("WorldBegin\n  Foo \"bar\""), "scene.pbrt:2:3: unknown directive \"Foo\"");
-    assert_eq!(error("WorldBegin\n[ 1 ]"), "scene.pbrt:2:1: expected a directive, found \"[\"");
-    assert_eq!(error("\"sphere\""), "scene.pbrt:1:1: expected a directive, found string \"sphere\"");
+    assert_eq!(
+        error("WorldBegin\n  Foo \"bar\""),
+        "scene.pbrt:2:3: unknown directive \"Foo\""
+    );
+    assert_eq!(
+        error("WorldBegin\n[ 1 ]"),
+        "scene.pbrt:2:1: expected a directive, found \"[\""
+    );
+    assert_eq!(
+        error("\"sphere\""),
+        "scene.pbrt:1:1: expected a directive, found string \"sphere\""
+    );
 }
 
 #[test]
 fn unknown_and_unsupported_shapes() {
-    assert_eq!(error("WorldBegin\nShape \"cube\""), "scene.pbrt:2:1: unknown shape \"cube\"");
-    assert_eq!(error("WorldBegin\nShape \"disk\""), "scene.pbrt:2:1: shape \"disk\" is not supported yet");
-    assert_eq!(kind("WorldBegin\nShape \"curve\""), SceneErrorKind::Unsupported);
+    assert_eq!(
+        error("WorldBegin\nShape \"cube\""),
+        "scene.pbrt:2:1: unknown shape \"cube\""
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"disk\""),
+        "scene.pbrt:2:1: shape \"disk\" is not supported yet"
+    );
+    assert_eq!(
+        kind("WorldBegin\nShape \"curve\""),
+        SceneErrorKind::Unsupported
+    );
 }
 
 #[test]
@@ -134,7 +167,10 @@ fn nan_and_negative_values() {
 
 #[test]
 fn unbalanced_attributes() {
-    assert_eq!(error("WorldBegin\nAttributeEnd"), "scene.pbrt:2:1: AttributeEnd without a matching AttributeBegin");
+    assert_eq!(
+        error("WorldBegin\nAttributeEnd"),
+        "scene.pbrt:2:1: AttributeEnd without a matching AttributeBegin"
+    );
     assert_eq!(
         error("WorldBegin\nAttributeBegin\n  AttributeBegin\n  AttributeEnd\n"),
         "scene.pbrt:2:1: AttributeBegin has no matching AttributeEnd"
@@ -143,7 +179,10 @@ fn unbalanced_attributes() {
 
 #[test]
 fn block_structure() {
-    assert_eq!(error("Camera \"perspective\"\n"), "scene.pbrt:2:1: end of file before \"WorldBegin\"");
+    assert_eq!(
+        error("Camera \"perspective\"\n"),
+        "scene.pbrt:2:1: end of file before \"WorldBegin\""
+    );
     assert_eq!(
         error("Shape \"sphere\""),
         "scene.pbrt:1:1: \"Shape\" is only allowed inside the world block, after WorldBegin"
@@ -152,7 +191,10 @@ fn block_structure() {
         error("WorldBegin\nFilm \"rgb\""),
         "scene.pbrt:2:1: options cannot be set inside the world block; \"Film\" must come before WorldBegin"
     );
-    assert_eq!(error("WorldBegin\nWorldBegin"), "scene.pbrt:2:1: WorldBegin appears twice");
+    assert_eq!(
+        error("WorldBegin\nWorldBegin"),
+        "scene.pbrt:2:1: WorldBegin appears twice"
+    );
 }
 
 #[test]
@@ -165,7 +207,10 @@ fn unsupported_features_are_named() {
         error("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"dielectric\""),
         "scene.pbrt:2:23: material type \"dielectric\" is not supported yet (in MakeNamedMaterial \"m\")"
     );
-    assert_eq!(error("WorldBegin\nMaterial \"shiny\""), "scene.pbrt:2:1: unknown material type \"shiny\"");
+    assert_eq!(
+        error("WorldBegin\nMaterial \"shiny\""),
+        "scene.pbrt:2:1: unknown material type \"shiny\""
+    );
     assert_eq!(
         error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 700 0.5]"),
         "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\" is"
@@ -182,7 +227,10 @@ fn unsupported_features_are_named() {
         error("WorldBegin\nLightSource \"infinite\""),
         "scene.pbrt:2:1: light type \"infinite\" is not supported yet"
     );
-    assert_eq!(error("Camera \"orthographic\""), "scene.pbrt:1:1: camera type \"orthographic\" is not supported yet");
+    assert_eq!(
+        error("Camera \"orthographic\""),
+        "scene.pbrt:1:1: camera type \"orthographic\" is not supported yet"
+    );
     assert_eq!(
         error("WorldBegin\nObjectBegin \"tree\""),
         "scene.pbrt:2:1: ObjectBegin \"tree\": object instancing is not supported yet"
@@ -200,7 +248,10 @@ fn unsupported_features_are_named() {
         "scene.pbrt:2:27: \"blackbody L\" of AreaLightSource \"diffuse\" is not supported yet; only \"rgb L\" is"
     );
     assert_eq!(kind("Sampler \"bogus\""), SceneErrorKind::Syntax);
-    assert_eq!(kind("WorldBegin\nMaterial \"coateddiffuse\""), SceneErrorKind::Unsupported);
+    assert_eq!(
+        kind("WorldBegin\nMaterial \"coateddiffuse\""),
+        SceneErrorKind::Unsupported
+    );
 }
 
 #[test]
@@ -249,5 +300,8 @@ fn bad_utf8_reports_its_position() {
     let path = dir.path().join("bad.pbrt");
     std::fs::write(&path, b"WorldBegin\n  Shape \xff").unwrap();
     let err = mcrender_scene::pbrt::load_file(&path).unwrap_err();
-    assert_eq!(err.to_string(), format!("{}:2:9: the file is not valid UTF-8", path.display()));
+    assert_eq!(
+        err.to_string(),
+        format!("{}:2:9: the file is not valid UTF-8", path.display())
+    );
 }

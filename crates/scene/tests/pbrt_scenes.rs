@@ -33,23 +33,44 @@ fn close(a: Vec3, b: Vec3) -> bool {
 fn check_cornell(loaded: &LoadedScene) {
     let d: &SceneDescription = &loaded.description;
     assert_eq!(d.shapes.len(), 8);
-    assert!(d.shapes.iter().all(|s| matches!(s.geometry, GeometryDesc::TriangleMesh(_))));
+    assert!(d
+        .shapes
+        .iter()
+        .all(|s| matches!(s.geometry, GeometryDesc::TriangleMesh(_))));
     assert!(d.shapes.iter().all(|s| !s.flip_normals));
     assert!(d.lights.is_empty());
 
-    let lights: Vec<_> = d.shapes.iter().filter_map(|s| s.area_light.map(|l| (s, l))).collect();
+    let lights: Vec<_> = d
+        .shapes
+        .iter()
+        .filter_map(|s| s.area_light.map(|l| (s, l)))
+        .collect();
     assert_eq!(lights.len(), 1);
     let (light_shape, light) = lights[0];
     assert_eq!(light.radiance, Rgb::new(17.0, 12.0, 4.0));
     assert!(!light.two_sided);
-    assert_eq!(d.materials[light_shape.material as usize], MaterialDesc::Diffuse { reflectance: Rgb::BLACK });
-    let GeometryDesc::TriangleMesh(mesh) = &light_shape.geometry else { unreachable!() };
+    assert_eq!(
+        d.materials[light_shape.material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::BLACK
+        }
+    );
+    let GeometryDesc::TriangleMesh(mesh) = &light_shape.geometry else {
+        unreachable!()
+    };
     assert!(mesh.positions.iter().all(|p| (p.y - 1.98).abs() < 1e-6));
-    assert!(mesh.normals.as_ref().unwrap().iter().all(|n| close(*n, Vec3::new(0.0, -1.0, 0.0))));
+    assert!(mesh
+        .normals
+        .as_ref()
+        .unwrap()
+        .iter()
+        .all(|n| close(*n, Vec3::new(0.0, -1.0, 0.0))));
 
     // Left wall, right wall, the shared grey, and the light's black.
     assert_eq!(d.materials.len(), 4);
-    assert!(d.materials.contains(&MaterialDesc::Diffuse { reflectance: Rgb::new(0.63, 0.065, 0.05) }));
+    assert!(d.materials.contains(&MaterialDesc::Diffuse {
+        reflectance: Rgb::new(0.63, 0.065, 0.05)
+    }));
     let total_triangles: usize = d
         .shapes
         .iter()
@@ -62,7 +83,12 @@ fn check_cornell(loaded: &LoadedScene) {
 
     assert_eq!((d.film.width, d.film.height), (1024, 1024));
     assert_eq!(d.integrator.max_depth, 65);
-    assert_eq!(d.filter, FilterDesc::Triangle { radius: mcrender_core::math::Vec2::ONE });
+    assert_eq!(
+        d.filter,
+        FilterDesc::Triangle {
+            radius: mcrender_core::math::Vec2::ONE
+        }
+    );
     assert_eq!(d.sampler.samples_per_pixel, 64);
     assert_eq!(loaded.output_filename.as_deref(), Some("cornell-box.png"));
 
@@ -70,13 +96,18 @@ fn check_cornell(loaded: &LoadedScene) {
     // on the left of the image.
     let cam = &d.camera;
     assert_eq!(cam.fov_degrees, 19.5);
-    assert!(close(cam.world_from_camera.point(Vec3::ZERO), Vec3::new(0.0, 1.0, 6.8)));
+    assert!(close(
+        cam.world_from_camera.point(Vec3::ZERO),
+        Vec3::new(0.0, 1.0, 6.8)
+    ));
     assert!(close(cam.world_from_camera.vector(Vec3::Z), -Vec3::Z));
     assert!(close(cam.world_from_camera.vector(Vec3::X), Vec3::X));
     assert!(close(cam.world_from_camera.vector(Vec3::Y), Vec3::Y));
 
     assert_eq!(loaded.warnings.len(), 1, "{:?}", loaded.warnings);
-    assert!(loaded.warnings[0].ends_with(":4:1: warning: sampler \"sobol\" is not implemented yet; using \"independent\""));
+    assert!(loaded.warnings[0].ends_with(
+        ":4:1: warning: sampler \"sobol\" is not implemented yet; using \"independent\""
+    ));
 }
 
 #[test]
@@ -127,5 +158,8 @@ fn veach_mis_fails_naming_the_unsupported_material() {
 fn missing_scene_file_is_an_io_error() {
     let err = load_file(Path::new("no/such/scene.pbrt")).unwrap_err();
     assert_eq!(err.kind, SceneErrorKind::Io);
-    assert_eq!(err.to_string(), "no/such/scene.pbrt: cannot open scene file: No such file or directory");
+    assert_eq!(
+        err.to_string(),
+        "no/such/scene.pbrt: cannot open scene file: No such file or directory"
+    );
 }

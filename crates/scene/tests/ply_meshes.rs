@@ -30,27 +30,50 @@ fn header(format: &str) -> String {
 fn ascii_ply() -> Vec<u8> {
     let mut s = header("ascii");
     for v in VERTICES {
-        s += &v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
+        s += &v
+            .iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(" ");
         s += "\n";
     }
     for f in FACES {
-        s += &format!("{} {}\n", f.len(), f.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" "));
+        s += &format!(
+            "{} {}\n",
+            f.len(),
+            f.iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
     }
     s.into_bytes()
 }
 
 fn binary_ply(big_endian: bool) -> Vec<u8> {
-    let format = if big_endian { "binary_big_endian" } else { "binary_little_endian" };
+    let format = if big_endian {
+        "binary_big_endian"
+    } else {
+        "binary_little_endian"
+    };
     let mut bytes = header(format).into_bytes();
     for v in VERTICES {
         for x in v {
-            bytes.extend(if big_endian { x.to_be_bytes() } else { x.to_le_bytes() });
+            bytes.extend(if big_endian {
+                x.to_be_bytes()
+            } else {
+                x.to_le_bytes()
+            });
         }
     }
     for f in FACES {
         bytes.push(f.len() as u8);
         for i in f {
-            bytes.extend(if big_endian { i.to_be_bytes() } else { i.to_le_bytes() });
+            bytes.extend(if big_endian {
+                i.to_be_bytes()
+            } else {
+                i.to_le_bytes()
+            });
         }
     }
     bytes
@@ -60,7 +83,8 @@ fn load_mesh(ply: &[u8], extra: &str) -> TriangleMeshDesc {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("models")).unwrap();
     std::fs::write(dir.path().join("models/m.ply"), ply).unwrap();
-    let src = format!("WorldBegin\n{extra}\nShape \"plymesh\" \"string filename\" \"models/m.ply\"");
+    let src =
+        format!("WorldBegin\n{extra}\nShape \"plymesh\" \"string filename\" \"models/m.ply\"");
     let scene = load_str(&src, "scene.pbrt", dir.path()).unwrap_or_else(|e| panic!("{e}"));
     match &scene.description.shapes[0].geometry {
         GeometryDesc::TriangleMesh(m) => m.clone(),
@@ -95,7 +119,11 @@ fn binary_big_endian_ply() {
 fn all_encodings_agree() {
     let dir = tempfile::tempdir().unwrap();
     let mut meshes = Vec::new();
-    for (name, bytes) in [("a.ply", ascii_ply()), ("le.ply", binary_ply(false)), ("be.ply", binary_ply(true))] {
+    for (name, bytes) in [
+        ("a.ply", ascii_ply()),
+        ("le.ply", binary_ply(false)),
+        ("be.ply", binary_ply(true)),
+    ] {
         let path = dir.path().join(name);
         std::fs::write(&path, bytes).unwrap();
         meshes.push(read_ply(&path).unwrap());
@@ -106,7 +134,10 @@ fn all_encodings_agree() {
 
 #[test]
 fn ply_mesh_is_transformed_and_reverse_orientation_flips_normals() {
-    let mesh = load_mesh(&binary_ply(false), "Translate 0 0 2\nScale 3 1 1\nReverseOrientation");
+    let mesh = load_mesh(
+        &binary_ply(false),
+        "Translate 0 0 2\nScale 3 1 1\nReverseOrientation",
+    );
     assert_eq!(mesh.positions[1], Vec3::new(3.0, 0.0, 2.0));
     assert_eq!(mesh.normals.as_ref().unwrap()[0], -Vec3::Z);
 }
@@ -115,8 +146,16 @@ fn ply_mesh_is_transformed_and_reverse_orientation_flips_normals() {
 fn ply_without_faces_is_an_error_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("m.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n").unwrap();
-    let err = load_str("WorldBegin\n  Shape \"plymesh\" \"string filename\" \"m.ply\"", "scene.pbrt", dir.path()).unwrap_err();
-    assert_eq!(err.to_string(), "scene.pbrt:2:3: cannot read PLY file \"m.ply\": no \"face\" element");
+    let err = load_str(
+        "WorldBegin\n  Shape \"plymesh\" \"string filename\" \"m.ply\"",
+        "scene.pbrt",
+        dir.path(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "scene.pbrt:2:3: cannot read PLY file \"m.ply\": no \"face\" element"
+    );
 }
 
 #[test]
@@ -125,7 +164,11 @@ fn truncated_binary_ply_is_an_error() {
     for cut in [bytes.len() - 1, bytes.len() - 20, 200, 10] {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("m.ply"), &bytes[..cut]).unwrap();
-        let err = load_str("WorldBegin\nShape \"plymesh\" \"string filename\" \"m.ply\"", "scene.pbrt", dir.path());
+        let err = load_str(
+            "WorldBegin\nShape \"plymesh\" \"string filename\" \"m.ply\"",
+            "scene.pbrt",
+            dir.path(),
+        );
         assert!(err.is_err(), "cut at {cut}");
     }
 }
@@ -138,5 +181,8 @@ fn missing_ply_is_relative_to_the_base_dir() {
         Path::new("/nonexistent-dir"),
     )
     .unwrap_err();
-    assert_eq!(err.to_string(), "scene.pbrt:2:1: cannot open PLY file \"models/foo.ply\": No such file or directory");
+    assert_eq!(
+        err.to_string(),
+        "scene.pbrt:2:1: cannot open PLY file \"models/foo.ply\": No such file or directory"
+    );
 }

@@ -126,12 +126,14 @@ impl SceneBuilder {
                     .collect::<Result<_, _>>()?
             }
             None if n == 3 => vec![0, 1, 2],
-            None => return Err(SceneError::syntax(
-                loc,
-                format!(
+            None => {
+                return Err(SceneError::syntax(
+                    loc,
+                    format!(
                     "Shape \"trianglemesh\" needs \"integer indices\" (P has {n} points, not 3)"
                 ),
-            )),
+                ))
+            }
         };
         let normals = match params.normals("N")? {
             Some((normals, nloc)) => {
