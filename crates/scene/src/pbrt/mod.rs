@@ -1,25 +1,25 @@
 //! A loader for the pbrt-v4 scene format (the subset mcrender renders so far).
 //!
 //! [`load_file`] and [`load_str`] parse a scene into a
-//! [`SceneDescription`](mcrender_core::scene::SceneDescription), plus the output file name
+//! [`SceneDescription`], plus the output file name
 //! from `Film` and warnings for everything that was accepted but ignored. Anything that
 //! would change the image and is not supported is an error naming the feature and its
 //! `file:line:column`.
 //!
-//! Layout: [`tokenizer`] splits text into tokens, [`params`] types parameter lists,
-//! `parser` reads directives, `builder` (with `options`, `materials`, `lights`, `shapes`)
-//! gives them meaning, [`transform`] has pbrt's transform matrices.
+//! Layout: `tokenizer` splits text into tokens, `params` types parameter lists, `parser`
+//! reads directives, `builder` (with `graphics_state`, `options`, `materials`, `lights`,
+//! `shapes`) gives them meaning, `transform` has pbrt's transform matrices.
 
 mod builder;
 mod graphics_state;
 mod lights;
 mod materials;
 mod options;
-pub mod params;
+mod params;
 mod parser;
 mod shapes;
-pub mod tokenizer;
-pub mod transform;
+mod tokenizer;
+mod transform;
 
 use std::path::Path;
 use std::sync::Arc;

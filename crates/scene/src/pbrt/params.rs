@@ -7,7 +7,7 @@
 
 use std::cell::Cell;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use mcrender_core::color::Rgb;
 
 use super::tokenizer::{parse_number, Token, TokenKind};
@@ -517,19 +517,6 @@ impl ParamSet {
         Ok(self.lookup(name, &[ParamType::Normal])?.map(|p| {
             (
                 p.floats().chunks_exact(3).map(Vec3::from_slice).collect(),
-                p.loc.clone(),
-            )
-        }))
-    }
-
-    /// All values of a `point2` parameter.
-    ///
-    /// # Errors
-    /// Wrong type.
-    pub fn point2s(&self, name: &str) -> Result<Option<(Vec<Vec2>, Location)>, SceneError> {
-        Ok(self.lookup(name, &[ParamType::Point2])?.map(|p| {
-            (
-                p.floats().chunks_exact(2).map(Vec2::from_slice).collect(),
                 p.loc.clone(),
             )
         }))

@@ -78,12 +78,6 @@ impl Tokenizer {
         }
     }
 
-    /// The file name used in locations.
-    #[must_use]
-    pub fn file(&self) -> &Arc<str> {
-        &self.file
-    }
-
     /// Location of the next character (the end of the file once everything is read).
     #[must_use]
     pub fn location(&self) -> Location {
