@@ -36,6 +36,9 @@ impl ImageRgb {
     }
 
     /// The pixel at column `x`, row `y` (0 = top).
+    ///
+    /// # Panics
+    /// When `(x, y)` is outside the image.
     #[must_use]
     pub fn get(&self, x: u32, y: u32) -> Rgb {
         self.pixels[y as usize * self.width as usize + x as usize]

@@ -6,6 +6,18 @@
 //! would change the image and is not supported is an error naming the feature and its
 //! `file:line:column`.
 //!
+//! Supported now: the transform directives, `CoordinateSystem`/`CoordSysTransform`,
+//! attribute scopes (`TransformBegin`/`End` as in pbrt-v4), `ReverseOrientation`,
+//! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, every
+//! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
+//! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
+//! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`,
+//! `Include`/`Import`, `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials,
+//! textures, lights, shapes, media, instancing and motion blur are errors naming the feature.
+//!
+//! Relative file names resolve as in pbrt-v4: against the directory of the top-level scene
+//! file (then, as a fallback, against the directory of the including file).
+//!
 //! Layout: `tokenizer` splits text into tokens, `params` types parameter lists, `parser`
 //! reads directives, `builder` (with `graphics_state`, `options`, `materials`, `lights`,
 //! `shapes`) gives them meaning, `transform` has pbrt's transform matrices.

@@ -28,31 +28,8 @@ impl SceneBuilder {
         loc: &Location,
     ) -> Result<(), SceneError> {
         self.require_world("Shape", loc)?;
-        params.add_inherited(&self.state.attributes.shape);
-        let world_from_object = self.ctm_transform(&format!("Shape \"{kind}\""), loc)?;
-        let geometry = match kind {
-            "trianglemesh" => {
-                let mesh = self.triangle_mesh_params(params, loc)?;
-                to_world(
-                    mesh,
-                    &world_from_object,
-                    self.state.reverse_orientation,
-                    loc,
-                )?
-            }
-            "plymesh" => {
-                let Some(mesh) = self.ply_mesh(params, loc)? else {
-                    self.warn_unused(params);
-                    return Ok(());
-                };
-                to_world(
-                    mesh,
-                    &world_from_object,
-                    self.state.reverse_orientation,
-                    loc,
-                )?
-            }
-            "sphere" => self.sphere(params, world_from_object)?,
+        match kind {
+            "trianglemesh" | "plymesh" | "sphere" => {}
             "disk" | "cylinder" | "bilinearmesh" | "loopsubdiv" | "curve" => {
                 return Err(SceneError::unsupported(
                     loc,
@@ -60,6 +37,23 @@ impl SceneBuilder {
                 ));
             }
             _ => return Err(SceneError::syntax(loc, format!("unknown shape \"{kind}\""))),
+        }
+        params.add_inherited(&self.state.attributes.shape);
+        let world_from_object = self.ctm_transform(&format!("Shape \"{kind}\""), loc)?;
+        let reverse = self.state.reverse_orientation;
+        let geometry = match kind {
+            "trianglemesh" => {
+                let mesh = self.triangle_mesh_params(params, loc)?;
+                to_world(mesh, &world_from_object, reverse, loc)?
+            }
+            "plymesh" => {
+                let Some(mesh) = self.ply_mesh(params, loc)? else {
+                    self.warn_unused(params);
+                    return Ok(());
+                };
+                to_world(mesh, &world_from_object, reverse, loc)?
+            }
+            _ => self.sphere(params, world_from_object)?,
         };
         for name in ["alpha", "displacement", "emissionfilename"] {
             if let Some(p) = params.get(name) {
