@@ -186,3 +186,26 @@ fn missing_ply_is_relative_to_the_base_dir() {
         "scene.pbrt:2:1: cannot open PLY file \"models/foo.ply\": No such file or directory"
     );
 }
+
+#[test]
+fn plymesh_at_the_end_of_an_included_file_falls_back_to_that_files_directory() {
+    // pbrt resolves against the top-level file's directory; when the file is not there,
+    // mcrender also tries the directory of the file that names it, even when the plymesh is
+    // the last directive of an included file.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(dir.path().join("sub/m.ply"), ascii_ply()).unwrap();
+    std::fs::write(
+        dir.path().join("sub/geo.pbrt"),
+        "Shape \"plymesh\" \"string filename\" \"m.ply\"",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("main.pbrt"),
+        "WorldBegin\nInclude \"sub/geo.pbrt\"\nShape \"sphere\"\n",
+    )
+    .unwrap();
+    let scene = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.description.shapes.len(), 2);
+}

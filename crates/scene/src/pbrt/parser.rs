@@ -59,6 +59,13 @@ impl Parser {
     /// The first problem found, with its location.
     pub fn run(mut self) -> Result<LoadedScene, SceneError> {
         while let Some(tok) = self.next()? {
+            // The file a directive comes from is still on top of the stack (files are only
+            // popped when reading past their end), so its directory is the one to resolve
+            // the directive's file names against, even if reading the directive's arguments
+            // runs off the end of an included file.
+            if let Some(input) = self.inputs.last() {
+                self.builder.current_dir.clone_from(&input.dir);
+            }
             match tok.kind {
                 TokenKind::Word(w) => self.directive(&w, tok.loc)?,
                 other => {
@@ -85,9 +92,6 @@ impl Parser {
             }
             self.last_end = input.tokens.location();
             self.inputs.pop();
-            if let Some(parent) = self.inputs.last() {
-                self.builder.current_dir = parent.dir.clone();
-            }
         }
         Ok(None)
     }
@@ -457,9 +461,8 @@ impl Parser {
         let file: Arc<str> = path.display().to_string().into();
         let source = decode(&bytes, &file)?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        self.builder.current_dir = dir.clone();
-        // A token peeked before the Include belongs after it; nothing is peeked here because
-        // the file name was just consumed.
+        // Nothing is peeked here (the file name was just consumed), so the included tokens
+        // come next.
         self.inputs.push(Input {
             tokens: Tokenizer::new(&source, file),
             dir,
