@@ -219,7 +219,8 @@ fn named_materials_are_resolved_and_deduplicated() {
 fn point_light_is_transformed_and_scaled() {
     let s = load(
         "WorldBegin\nTranslate 0 2 0\nLightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 2 \"point3 from\" [1 0 0]\n\
-         LightSource \"point\" \"float power\" 100",
+         LightSource \"point\" \"float power\" 100\n\
+         LightSource \"point\" \"spectrum I\" \"stdillum-D65\" \"float scale\" 3",
     );
     let lights = &s.description.lights;
     assert_eq!(
@@ -231,6 +232,8 @@ fn point_light_is_transformed_and_scaled() {
     );
     let LightDesc::Point { intensity, .. } = lights[1];
     assert!((intensity.r - 100.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-4);
+    let LightDesc::Point { intensity, .. } = lights[2];
+    assert_eq!(intensity, Rgb::splat(3.0));
 }
 
 #[test]

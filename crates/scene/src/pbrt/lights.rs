@@ -10,7 +10,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::scene::{AreaLightDesc, LightDesc};
 
 use super::builder::SceneBuilder;
-use super::params::ParamSet;
+use super::params::{ParamSet, ParamType};
 use crate::error::{Location, SceneError};
 
 impl SceneBuilder {
@@ -98,8 +98,19 @@ impl SceneBuilder {
 }
 
 /// An emitted colour `name` (default white) times `scale` (default 1); both non-negative.
+///
+/// `"spectrum L" "stdillum-D65"` is accepted too: pbrt normalises an emission spectrum by its
+/// luminance, and the sRGB white point is D65, so it is exactly RGB white.
 fn emission(params: &ParamSet, name: &str) -> Result<Rgb, SceneError> {
-    let color = params.rgb(name, Rgb::WHITE)?;
+    let d65 = params
+        .get(name)
+        .is_some_and(|p| p.ty == ParamType::Spectrum && p.strings() == ["stdillum-D65"]);
+    let color = if d65 {
+        params.lookup(name, &[ParamType::Spectrum])?;
+        Rgb::WHITE
+    } else {
+        params.rgb(name, Rgb::WHITE)?
+    };
     if color.to_array().iter().any(|c| *c < 0.0) {
         let loc = params.get(name).map_or(&params.loc, |p| &p.loc);
         return Err(SceneError::invalid(
