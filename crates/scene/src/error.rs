@@ -130,14 +130,8 @@ mod tests {
             &Location::new("scene.pbrt".into(), 12, 5),
             "expected a number, found \"abc\"",
         );
-        assert_eq!(
-            e.to_string(),
-            "scene.pbrt:12:5: expected a number, found \"abc\""
-        );
-        let e = SceneError::io(
-            &Location::file_only("a.pbrt".into()),
-            "cannot open scene file: gone",
-        );
+        assert_eq!(e.to_string(), "scene.pbrt:12:5: expected a number, found \"abc\"");
+        let e = SceneError::io(&Location::file_only("a.pbrt".into()), "cannot open scene file: gone");
         assert_eq!(e.to_string(), "a.pbrt: cannot open scene file: gone");
     }
 

@@ -84,29 +84,21 @@ pub fn read_ply_bytes(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
             _ => {
                 other_parser
                     .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| {
-                        format_error(&format!("cannot read the \"{name}\" elements"), &e)
-                    })?;
+                    .map_err(|e| format_error(&format!("cannot read the \"{name}\" elements"), &e))?;
             }
         }
     }
     let vertices = vertices.ok_or_else(|| PlyError::Format("no \"vertex\" element".into()))?;
     let faces = faces.ok_or_else(|| PlyError::Format("no \"face\" element".into()))?;
     if !has.position {
-        return Err(PlyError::Format(
-            "the vertices have no x, y, z properties".into(),
-        ));
+        return Err(PlyError::Format("the vertices have no x, y, z properties".into()));
     }
     build_mesh(&vertices, &faces, &has)
 }
 
 fn format_error(what: &str, err: &std::io::Error) -> PlyError {
     // ply-rs spreads its messages over several lines; keep them on one.
-    let detail = err
-        .to_string()
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ");
+    let detail = err.to_string().split_whitespace().collect::<Vec<_>>().join(" ");
     PlyError::Format(format!("{what}: {detail}"))
 }
 
@@ -123,9 +115,7 @@ fn check_header_numbers(bytes: &[u8]) -> Result<(), PlyError> {
         Some((name, count, 0)) if *count > 0 => Err(PlyError::Format(format!(
             "element \"{name}\" has {count} entries but no properties"
         ))),
-        Some((name, count, properties))
-            if count.saturating_mul(*properties) > bytes.len() as u64 =>
-        {
+        Some((name, count, properties)) if count.saturating_mul(*properties) > bytes.len() as u64 => {
             Err(PlyError::Format(format!(
                 "element \"{name}\" claims {count} entries, more than the file can hold"
             )))
@@ -142,9 +132,7 @@ fn check_header_numbers(bytes: &[u8]) -> Result<(), PlyError> {
         for &b in &line {
             run = if b.is_ascii_digit() { run + 1 } else { 0 };
             if run > 18 {
-                return Err(PlyError::Format(
-                    "a number in the header is too large".into(),
-                ));
+                return Err(PlyError::Format("a number in the header is too large".into()));
             }
         }
         let text = String::from_utf8_lossy(&line);
@@ -153,10 +141,7 @@ fn check_header_numbers(bytes: &[u8]) -> Result<(), PlyError> {
             Some("element") => {
                 check_element(&element)?;
                 let name = words.get(1).copied().unwrap_or("").to_string();
-                let count = words
-                    .get(2)
-                    .and_then(|c| c.parse::<u64>().ok())
-                    .unwrap_or(0);
+                let count = words.get(2).and_then(|c| c.parse::<u64>().ok()).unwrap_or(0);
                 element = Some((name, count, 0));
             }
             Some("property") => {
@@ -287,17 +272,11 @@ fn finite_vec3(v: [f64; 3], what: &str, i: usize) -> Result<Vec3, PlyError> {
     if f.is_finite() {
         Ok(f)
     } else {
-        Err(PlyError::Format(format!(
-            "the {what} of vertex {i} is not finite"
-        )))
+        Err(PlyError::Format(format!("the {what} of vertex {i} is not finite")))
     }
 }
 
-fn build_mesh(
-    vertices: &[Vertex],
-    faces: &[Face],
-    has: &VertexLayout,
-) -> Result<PlyMesh, PlyError> {
+fn build_mesh(vertices: &[Vertex], faces: &[Face], has: &VertexLayout) -> Result<PlyMesh, PlyError> {
     let positions = vertices
         .iter()
         .enumerate()

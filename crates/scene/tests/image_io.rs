@@ -10,18 +10,10 @@ fn gradient(width: u32, height: u32) -> ImageRgb {
     let pixels = (0..width * height)
         .map(|i| {
             let (x, y) = (i % width, i / width);
-            Rgb::new(
-                x as f32 * 0.25,
-                y as f32 * 1.5,
-                1e-3 + (x * y) as f32 * 100.0,
-            )
+            Rgb::new(x as f32 * 0.25, y as f32 * 1.5, 1e-3 + (x * y) as f32 * 100.0)
         })
         .collect();
-    ImageRgb {
-        width,
-        height,
-        pixels,
-    }
+    ImageRgb { width, height, pixels }
 }
 
 fn files_in(dir: &Path) -> Vec<String> {
@@ -95,10 +87,7 @@ fn failed_writes_leave_no_file() {
 
     let err = write_image(&dir.path().join("missing/out.png"), &img).unwrap_err();
     assert!(matches!(err, ImageError::Io { .. }), "{err}");
-    assert!(
-        err.to_string().ends_with("No such file or directory"),
-        "{err}"
-    );
+    assert!(err.to_string().ends_with("No such file or directory"), "{err}");
 
     let err = write_image(&dir.path().join("out.jpg"), &img).unwrap_err();
     assert_eq!(
@@ -123,11 +112,7 @@ fn failed_writes_leave_no_file() {
         Err(ImageError::InvalidImage { .. })
     ));
 
-    assert!(
-        files_in(dir.path()).is_empty(),
-        "{:?}",
-        files_in(dir.path())
-    );
+    assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
 }
 
 #[test]

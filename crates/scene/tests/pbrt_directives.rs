@@ -20,9 +20,7 @@ fn load(src: &str) -> LoadedScene {
 /// The world-from-object matrix of the only (or first) sphere.
 fn sphere_matrix(s: &LoadedScene, i: usize) -> Mat4 {
     match &s.description.shapes[i].geometry {
-        GeometryDesc::Sphere {
-            world_from_object, ..
-        } => world_from_object.m,
+        GeometryDesc::Sphere { world_from_object, .. } => world_from_object.m,
         other => panic!("not a sphere: {other:?}"),
     }
 }
@@ -43,19 +41,13 @@ const TRIANGLE: &str = "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0
 #[test]
 fn translate_scale_rotate_compose_in_order() {
     let s = load("WorldBegin\nTranslate 1 2 3\nShape \"sphere\"\nScale 2 3 4\nShape \"sphere\"\nRotate 90 0 0 1\nShape \"sphere\"");
-    assert_eq!(
-        sphere_matrix(&s, 0),
-        Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
-    );
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
     // CTM = T * S: scale first, then translate.
     let ts = sphere_matrix(&s, 1);
     assert_eq!(ts.transform_point3(Vec3::ONE), Vec3::new(3.0, 5.0, 7.0));
     // CTM = T * S * R: (1, 0, 0) -> R -> (0, 1, 0) -> S -> (0, 3, 0) -> T -> (1, 5, 3).
     let tsr = sphere_matrix(&s, 2);
-    assert!(close(
-        tsr.transform_point3(Vec3::X),
-        Vec3::new(1.0, 5.0, 3.0)
-    ));
+    assert!(close(tsr.transform_point3(Vec3::X), Vec3::new(1.0, 5.0, 3.0)));
 }
 
 #[test]
@@ -65,14 +57,8 @@ fn transform_replaces_and_concat_transform_multiplies() {
         "WorldBegin\nTranslate 5 5 5\nTransform [1 0 0 0  0 1 0 0  0 0 1 0  1 2 3 1]\nShape \"sphere\"\n\
          ConcatTransform [2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1]\nShape \"sphere\"\nIdentity\nShape \"sphere\"",
     );
-    assert_eq!(
-        sphere_matrix(&s, 0),
-        Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
-    );
-    assert_eq!(
-        sphere_matrix(&s, 1).transform_point3(Vec3::X),
-        Vec3::new(3.0, 2.0, 3.0)
-    );
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
+    assert_eq!(sphere_matrix(&s, 1).transform_point3(Vec3::X), Vec3::new(3.0, 2.0, 3.0));
     assert_eq!(sphere_matrix(&s, 2), Mat4::IDENTITY);
 }
 
@@ -87,10 +73,7 @@ fn look_at_sets_the_camera() {
     // pbrt's camera space is left-handed: +x is to the right when looking down +z.
     assert!(close(w.vector(Vec3::X), -Vec3::X));
     assert!((w.m * w.m_inv).abs_diff_eq(Mat4::IDENTITY, 1e-5));
-    assert_eq!(
-        (cam.fov_degrees, cam.lens_radius, cam.focal_distance),
-        (30.0, 0.1, 5.0)
-    );
+    assert_eq!((cam.fov_degrees, cam.lens_radius, cam.focal_distance), (30.0, 0.1, 5.0));
     assert_eq!(cam.screen_window, None);
 }
 
@@ -143,8 +126,7 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     assert!(s
         .warnings
         .iter()
-        .any(|w| w
-            .starts_with("scene.pbrt:10:1: warning: TransformBegin/TransformEnd are deprecated")));
+        .any(|w| w.starts_with("scene.pbrt:10:1: warning: TransformBegin/TransformEnd are deprecated")));
 }
 
 #[test]
@@ -153,12 +135,7 @@ fn flip_normals_is_reverse_orientation_xor_handedness() {
         "WorldBegin\n{TRIANGLE}\nAttributeBegin\nScale -1 1 1\n{TRIANGLE}\nReverseOrientation\n{TRIANGLE}\nAttributeEnd\n\
          ReverseOrientation\n{TRIANGLE}"
     ));
-    let flips: Vec<bool> = s
-        .description
-        .shapes
-        .iter()
-        .map(|s| s.flip_normals)
-        .collect();
+    let flips: Vec<bool> = s.description.shapes.iter().map(|s| s.flip_normals).collect();
     assert_eq!(flips, vec![false, true, false, true]);
 }
 
@@ -186,9 +163,7 @@ fn three_vertices_need_no_indices_and_legacy_uv_warns() {
     assert_eq!(m.indices, vec![0, 1, 2]);
     assert_eq!(m.uvs.as_ref().unwrap()[1], Vec2::X);
     assert!(
-        s.warnings
-            .iter()
-            .any(|w| w.contains("\"float uv\" is pbrt-v3 syntax")),
+        s.warnings.iter().any(|w| w.contains("\"float uv\" is pbrt-v3 syntax")),
         "{:?}",
         s.warnings
     );
@@ -258,7 +233,12 @@ fn options_are_read() {
     assert_eq!(d.integrator.max_depth, 3);
     assert_eq!(d.camera.screen_window, Some([-1.0, 1.0, -0.5, 0.5]));
     let warnings = s.warnings.join("\n");
-    assert!(warnings.contains("scene.pbrt:1:92: warning: parameter \"float iso\" of Film \"rgb\" is not supported and was ignored"), "{warnings}");
+    assert!(
+        warnings.contains(
+            "scene.pbrt:1:92: warning: parameter \"float iso\" of Film \"rgb\" is not supported and was ignored"
+        ),
+        "{warnings}"
+    );
     assert!(
         warnings.contains("integrator \"volpath\" renders as \"path\""),
         "{warnings}"
@@ -311,8 +291,7 @@ fn filter_defaults_and_fallbacks() {
             sigma: 0.5
         }
     );
-    assert!(s.warnings[0]
-        .contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
+    assert!(s.warnings[0].contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
 }
 
 #[test]
@@ -320,9 +299,7 @@ fn samplers_map_to_independent_with_warnings() {
     let s = load("Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 5\nOption \"seed\" 9\nWorldBegin");
     assert_eq!(s.description.sampler.samples_per_pixel, 15);
     assert_eq!(s.description.sampler.seed, 9);
-    assert!(s.warnings[0].ends_with(
-        "warning: sampler \"stratified\" is not implemented yet; using \"independent\""
-    ));
+    assert!(s.warnings[0].ends_with("warning: sampler \"stratified\" is not implemented yet; using \"independent\""));
     let s = load("Sampler \"independent\"\nWorldBegin");
     assert!(s.warnings.iter().all(|w| !w.contains("sampler")));
 }
@@ -357,10 +334,15 @@ fn coordinate_systems() {
 
 #[test]
 fn unused_parameters_warn_with_their_location() {
-    let s = load(
-        "WorldBegin\nShape \"sphere\" \"float radius\" 2\n  \"float foo\" 1 \"float zmax\" 0.5",
+    let s = load("WorldBegin\nShape \"sphere\" \"float radius\" 2\n  \"float foo\" 1 \"float zmax\" 0.5");
+    assert!(
+        s.warnings.contains(
+            &"scene.pbrt:3:3: warning: parameter \"float foo\" of Shape \"sphere\" is not supported and was ignored"
+                .to_string()
+        ),
+        "{:?}",
+        s.warnings
     );
-    assert!(s.warnings.contains(&"scene.pbrt:3:3: warning: parameter \"float foo\" of Shape \"sphere\" is not supported and was ignored".to_string()), "{:?}", s.warnings);
     assert!(s.warnings.iter().any(|w| w.starts_with("scene.pbrt:3:17: warning: parameter \"float zmax\" of Shape \"sphere\" is not supported yet; rendering the full sphere")), "{:?}", s.warnings);
 }
 
@@ -397,12 +379,7 @@ fn include_is_relative_to_the_scene_directory_and_errors_name_the_included_file(
     );
 
     // load_str resolves includes against its base directory.
-    let s = load_str(
-        "WorldBegin\nImport \"sub/shapes.pbrt\"",
-        "inline",
-        &dir.path().join(""),
-    )
-    .unwrap_err();
+    let s = load_str("WorldBegin\nImport \"sub/shapes.pbrt\"", "inline", &dir.path().join("")).unwrap_err();
     assert!(s.to_string().contains("unknown shape \"cube\""));
 }
 
@@ -412,11 +389,7 @@ fn include_falls_back_to_the_including_file_directory() {
     std::fs::create_dir(dir.path().join("sub")).unwrap();
     std::fs::write(dir.path().join("sub/a.pbrt"), "Include \"b.pbrt\"\n").unwrap();
     std::fs::write(dir.path().join("sub/b.pbrt"), "Shape \"sphere\"\n").unwrap();
-    std::fs::write(
-        dir.path().join("main.pbrt"),
-        "WorldBegin\nInclude \"sub/a.pbrt\"\n",
-    )
-    .unwrap();
+    std::fs::write(dir.path().join("main.pbrt"), "WorldBegin\nInclude \"sub/a.pbrt\"\n").unwrap();
     let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
     assert_eq!(s.description.shapes.len(), 1);
 }

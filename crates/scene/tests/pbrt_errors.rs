@@ -72,10 +72,7 @@ fn unknown_and_unsupported_shapes() {
         error("WorldBegin\nShape \"disk\""),
         "scene.pbrt:2:1: shape \"disk\" is not supported yet"
     );
-    assert_eq!(
-        kind("WorldBegin\nShape \"curve\""),
-        SceneErrorKind::Unsupported
-    );
+    assert_eq!(kind("WorldBegin\nShape \"curve\""), SceneErrorKind::Unsupported);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use mcrender_scene::pbrt::load_str;
 use mcrender_scene::ply::read_ply_bytes;
 use proptest::prelude::*;
 
-const CORNELL: &str = include_str!("data/cornell-box/scene-v4.pbrt");
+const CORNELL: &str = include_str!("../../../scenes/cornell-box/scene-v4.pbrt");
 
 fn load(src: &str) {
     // Ok or Err are both fine; a panic fails the test.
@@ -16,11 +16,7 @@ fn load(src: &str) {
 
 #[test]
 fn every_truncation_of_the_cornell_box() {
-    let boundaries: Vec<usize> = CORNELL
-        .char_indices()
-        .map(|(i, _)| i)
-        .chain([CORNELL.len()])
-        .collect();
+    let boundaries: Vec<usize> = CORNELL.char_indices().map(|(i, _)| i).chain([CORNELL.len()]).collect();
     let mut ok = 0;
     for &end in &boundaries {
         if load_str(&CORNELL[..end], "fuzz.pbrt", Path::new("")).is_ok() {

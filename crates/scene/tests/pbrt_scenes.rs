@@ -1,5 +1,6 @@
-//! Whole scenes: the Cornell box copy in `tests/data`, and (when `MCRENDER_SCENES` names
-//! the directory holding `cornell-box/`, `coffee/`, `veach-mis/`) the shared test scenes.
+//! Whole scenes: the repository's Cornell box copy (`scenes/cornell-box`), and (when
+//! `MCRENDER_SCENES` names the directory holding `cornell-box/`, `coffee/`, `veach-mis/`)
+//! the shared test scenes.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -11,7 +12,7 @@ use mcrender_scene::pbrt::{load_file, LoadedScene};
 use mcrender_scene::SceneErrorKind;
 
 fn cornell_copy() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cornell-box/scene-v4.pbrt")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt")
 }
 
 /// The shared scene directory, or `None` (after a loud message) when it is not configured.
@@ -44,11 +45,7 @@ fn check_cornell(loaded: &LoadedScene) {
     assert!(d.shapes.iter().all(|s| !s.flip_normals));
     assert!(d.lights.is_empty());
 
-    let lights: Vec<_> = d
-        .shapes
-        .iter()
-        .filter_map(|s| s.area_light.map(|l| (s, l)))
-        .collect();
+    let lights: Vec<_> = d.shapes.iter().filter_map(|s| s.area_light.map(|l| (s, l))).collect();
     assert_eq!(lights.len(), 1);
     let (light_shape, light) = lights[0];
     assert_eq!(light.radiance, Rgb::new(17.0, 12.0, 4.0));
@@ -100,18 +97,15 @@ fn check_cornell(loaded: &LoadedScene) {
     // on the left of the image.
     let cam = &d.camera;
     assert_eq!(cam.fov_degrees, 19.5);
-    assert!(close(
-        cam.world_from_camera.point(Vec3::ZERO),
-        Vec3::new(0.0, 1.0, 6.8)
-    ));
+    assert!(close(cam.world_from_camera.point(Vec3::ZERO), Vec3::new(0.0, 1.0, 6.8)));
     assert!(close(cam.world_from_camera.vector(Vec3::Z), -Vec3::Z));
     assert!(close(cam.world_from_camera.vector(Vec3::X), Vec3::X));
     assert!(close(cam.world_from_camera.vector(Vec3::Y), Vec3::Y));
 
     assert_eq!(loaded.warnings.len(), 1, "{:?}", loaded.warnings);
-    assert!(loaded.warnings[0].ends_with(
-        ":4:1: warning: sampler \"sobol\" is not implemented yet; using \"independent\""
-    ));
+    assert!(
+        loaded.warnings[0].ends_with(":4:1: warning: sampler \"sobol\" is not implemented yet; using \"independent\"")
+    );
 }
 
 #[test]
@@ -189,16 +183,12 @@ fn coffee_geometry_loads_once_its_materials_are_diffuse() {
             "\"string type\" [ \"diffuse\" ]",
         );
     }
-    let scene = mcrender_scene::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let scene = mcrender_scene::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee).unwrap_or_else(|e| panic!("{e}"));
     let d = &scene.description;
     let plymeshes = src.matches("Shape \"plymesh\"").count();
     let trianglemeshes = src.matches("Shape \"trianglemesh\"").count();
     assert_eq!(d.shapes.len(), plymeshes + trianglemeshes);
-    assert_eq!(
-        d.shapes.iter().filter(|s| s.area_light.is_some()).count(),
-        3
-    );
+    assert_eq!(d.shapes.iter().filter(|s| s.area_light.is_some()).count(), 3);
     assert_eq!((d.film.width, d.film.height), (800, 1000));
     for shape in &d.shapes {
         let GeometryDesc::TriangleMesh(m) = &shape.geometry else {
@@ -228,12 +218,8 @@ fn veach_mis_geometry_loads_once_its_materials_are_diffuse() {
     let veach = dir.join("veach-mis");
     let src = std::fs::read_to_string(veach.join("scene-v4.pbrt"))
         .unwrap()
-        .replace(
-            "\"string type\" [ \"conductor\" ]",
-            "\"string type\" [ \"diffuse\" ]",
-        );
-    let scene = mcrender_scene::pbrt::load_str(&src, "veach.pbrt", &veach)
-        .unwrap_or_else(|e| panic!("{e}"));
+        .replace("\"string type\" [ \"conductor\" ]", "\"string type\" [ \"diffuse\" ]");
+    let scene = mcrender_scene::pbrt::load_str(&src, "veach.pbrt", &veach).unwrap_or_else(|e| panic!("{e}"));
     let d = &scene.description;
     assert_eq!(d.shapes.len(), 9);
     let spheres: Vec<_> = d
@@ -250,13 +236,7 @@ fn veach_mis_geometry_loads_once_its_materials_are_diffuse() {
     assert_eq!(spheres.len(), 3);
     let (radius, world_from_object, light) = spheres[2];
     assert_eq!(radius, 0.05);
-    assert!(close(
-        world_from_object.point(Vec3::ZERO),
-        Vec3::new(0.0, 6.5, 2.7)
-    ));
+    assert!(close(world_from_object.point(Vec3::ZERO), Vec3::new(0.0, 6.5, 2.7)));
     assert_eq!(light.unwrap().radiance, Rgb::splat(3039.6353));
-    assert_eq!(
-        (d.film.width, d.film.height, d.integrator.max_depth),
-        (1280, 720, 3)
-    );
+    assert_eq!((d.film.width, d.film.height, d.integrator.max_depth), (1280, 720, 3));
 }

@@ -30,21 +30,14 @@ fn header(format: &str) -> String {
 fn ascii_ply() -> Vec<u8> {
     let mut s = header("ascii");
     for v in VERTICES {
-        s += &v
-            .iter()
-            .map(|x| x.to_string())
-            .collect::<Vec<_>>()
-            .join(" ");
+        s += &v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
         s += "\n";
     }
     for f in FACES {
         s += &format!(
             "{} {}\n",
             f.len(),
-            f.iter()
-                .map(|i| i.to_string())
-                .collect::<Vec<_>>()
-                .join(" ")
+            f.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" ")
         );
     }
     s.into_bytes()
@@ -59,21 +52,13 @@ fn binary_ply(big_endian: bool) -> Vec<u8> {
     let mut bytes = header(format).into_bytes();
     for v in VERTICES {
         for x in v {
-            bytes.extend(if big_endian {
-                x.to_be_bytes()
-            } else {
-                x.to_le_bytes()
-            });
+            bytes.extend(if big_endian { x.to_be_bytes() } else { x.to_le_bytes() });
         }
     }
     for f in FACES {
         bytes.push(f.len() as u8);
         for i in f {
-            bytes.extend(if big_endian {
-                i.to_be_bytes()
-            } else {
-                i.to_le_bytes()
-            });
+            bytes.extend(if big_endian { i.to_be_bytes() } else { i.to_le_bytes() });
         }
     }
     bytes
@@ -83,8 +68,7 @@ fn load_mesh(ply: &[u8], extra: &str) -> TriangleMeshDesc {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("models")).unwrap();
     std::fs::write(dir.path().join("models/m.ply"), ply).unwrap();
-    let src =
-        format!("WorldBegin\n{extra}\nShape \"plymesh\" \"string filename\" \"models/m.ply\"");
+    let src = format!("WorldBegin\n{extra}\nShape \"plymesh\" \"string filename\" \"models/m.ply\"");
     let scene = load_str(&src, "scene.pbrt", dir.path()).unwrap_or_else(|e| panic!("{e}"));
     match &scene.description.shapes[0].geometry {
         GeometryDesc::TriangleMesh(m) => m.clone(),
@@ -134,10 +118,7 @@ fn all_encodings_agree() {
 
 #[test]
 fn ply_mesh_is_transformed_and_reverse_orientation_flips_normals() {
-    let mesh = load_mesh(
-        &binary_ply(false),
-        "Translate 0 0 2\nScale 3 1 1\nReverseOrientation",
-    );
+    let mesh = load_mesh(&binary_ply(false), "Translate 0 0 2\nScale 3 1 1\nReverseOrientation");
     assert_eq!(mesh.positions[1], Vec3::new(3.0, 0.0, 2.0));
     assert_eq!(mesh.normals.as_ref().unwrap()[0], -Vec3::Z);
 }
@@ -205,7 +186,6 @@ fn plymesh_at_the_end_of_an_included_file_falls_back_to_that_files_directory() {
         "WorldBegin\nInclude \"sub/geo.pbrt\"\nShape \"sphere\"\n",
     )
     .unwrap();
-    let scene = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let scene = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.description.shapes.len(), 2);
 }

@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use exr::prelude::{
-    read_first_rgba_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer,
-    LayerAttributes, WritableImage,
+    read_first_rgba_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes,
+    WritableImage,
 };
 use mcrender_core::color::Rgb;
 
@@ -19,12 +19,7 @@ use super::{check_size, ImageError, ImageRgb};
 /// # Errors
 /// No layers, a layer whose pixel count does not match, duplicate layer names, or an I/O
 /// or encoder failure (the target is then left untouched).
-pub fn write_exr_layers(
-    path: &Path,
-    width: u32,
-    height: u32,
-    layers: &[(&str, &[Rgb])],
-) -> Result<(), ImageError> {
+pub fn write_exr_layers(path: &Path, width: u32, height: u32, layers: &[(&str, &[Rgb])]) -> Result<(), ImageError> {
     if layers.is_empty() {
         return Err(ImageError::InvalidImage {
             path: path.to_path_buf(),
@@ -61,13 +56,10 @@ pub fn write_exr_layers(
     );
     let image = Image::from_layer(layer);
     write_atomically(path, |out| {
-        image
-            .write()
-            .to_buffered(out)
-            .map_err(|e| ImageError::Codec {
-                path: path.to_path_buf(),
-                message: e.to_string(),
-            })
+        image.write().to_buffered(out).map_err(|e| ImageError::Codec {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
     })
 }
 
@@ -97,11 +89,7 @@ pub fn read_exr(path: &Path) -> Result<ImageRgb, ImageError> {
     let (_, pixels) = image.layer_data.channel_data.pixels;
     let (width, height) = (u32::try_from(size.width()), u32::try_from(size.height()));
     match (width, height) {
-        (Ok(width), Ok(height)) => Ok(ImageRgb {
-            width,
-            height,
-            pixels,
-        }),
+        (Ok(width), Ok(height)) => Ok(ImageRgb { width, height, pixels }),
         _ => Err(ImageError::InvalidImage {
             path: path.to_path_buf(),
             message: "image too large".into(),

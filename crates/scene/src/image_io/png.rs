@@ -24,13 +24,7 @@ pub(super) fn write_png(path: &Path, img: &ImageRgb) -> Result<(), ImageError> {
     let bytes: Vec<u8> = img
         .pixels
         .iter()
-        .flat_map(|p: &Rgb| {
-            [
-                encode_channel(p.r),
-                encode_channel(p.g),
-                encode_channel(p.b),
-            ]
-        })
+        .flat_map(|p: &Rgb| [encode_channel(p.r), encode_channel(p.g), encode_channel(p.b)])
         .collect();
     write_atomically(path, |out| {
         PngEncoder::new(out)

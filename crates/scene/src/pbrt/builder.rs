@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use glam::Mat4;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
-    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, LightDesc, MaterialDesc, MaterialId,
-    SamplerDesc, SceneDescription, ShapeDesc,
+    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, LightDesc, MaterialDesc, MaterialId, SamplerDesc,
+    SceneDescription, ShapeDesc,
 };
 
 use super::graphics_state::{GraphicsState, MaterialRef};
@@ -91,8 +91,7 @@ impl SceneBuilder {
 
     /// Record a warning: `file:line:col: warning: message`.
     pub fn warn(&mut self, loc: &Location, message: impl AsRef<str>) {
-        self.warnings
-            .push(format!("{loc}: warning: {}", message.as_ref()));
+        self.warnings.push(format!("{loc}: warning: {}", message.as_ref()));
     }
 
     /// Record the warnings for every parameter of `params` that was not read.
@@ -184,8 +183,7 @@ impl SceneBuilder {
 
     /// Remember the camera's coordinate system (`CoordSysTransform "camera"`).
     pub fn set_camera_coordinate_system(&mut self, world_from_camera: Mat4) {
-        self.named_coordinate_systems
-            .insert("camera".into(), world_from_camera);
+        self.named_coordinate_systems.insert("camera".into(), world_from_camera);
     }
 
     // --- Blocks -----------------------------------------------------------------------
@@ -197,27 +195,22 @@ impl SceneBuilder {
         }
         self.block = Block::World;
         self.state.ctm = Mat4::IDENTITY;
-        self.named_coordinate_systems
-            .insert("world".into(), Mat4::IDENTITY);
+        self.named_coordinate_systems.insert("world".into(), Mat4::IDENTITY);
         Ok(())
     }
 
     /// `AttributeBegin`, or the deprecated `TransformBegin` (which pbrt-v4 treats the same).
-    pub fn attribute_begin(
-        &mut self,
-        directive: &'static str,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn attribute_begin(&mut self, directive: &'static str, loc: &Location) -> Result<(), SceneError> {
         self.require_world(directive, loc)?;
         if directive == "TransformBegin" && !self.warned_transform_begin {
             self.warned_transform_begin = true;
-            self.warn(loc, "TransformBegin/TransformEnd are deprecated; treated as AttributeBegin/AttributeEnd");
+            self.warn(
+                loc,
+                "TransformBegin/TransformEnd are deprecated; treated as AttributeBegin/AttributeEnd",
+            );
         }
         if self.scopes.len() >= 10_000 {
-            return Err(SceneError::invalid(
-                loc,
-                format!("{directive} nested too deeply"),
-            ));
+            return Err(SceneError::invalid(loc, format!("{directive} nested too deeply")));
         }
         self.scopes.push(Scope {
             saved: self.state.clone(),
@@ -228,11 +221,7 @@ impl SceneBuilder {
     }
 
     /// `AttributeEnd` / `TransformEnd`: restore the saved state.
-    pub fn attribute_end(
-        &mut self,
-        directive: &'static str,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn attribute_end(&mut self, directive: &'static str, loc: &Location) -> Result<(), SceneError> {
         self.require_world(directive, loc)?;
         let Some(scope) = self.scopes.pop() else {
             return Err(SceneError::syntax(
@@ -246,12 +235,7 @@ impl SceneBuilder {
 
     /// `Attribute "target" ...`: default parameters for later directives of that kind in
     /// this attribute scope.
-    pub fn attribute(
-        &mut self,
-        target: &str,
-        params: ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn attribute(&mut self, target: &str, params: ParamSet, loc: &Location) -> Result<(), SceneError> {
         let attributes = &mut self.state.attributes;
         let list = match target {
             "shape" => &mut attributes.shape,

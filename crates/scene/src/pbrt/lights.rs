@@ -15,18 +15,10 @@ use crate::error::{Location, SceneError};
 
 impl SceneBuilder {
     /// `AreaLightSource "diffuse" ...`: emission for subsequent shapes in this scope.
-    pub fn area_light_source(
-        &mut self,
-        kind: &str,
-        params: &mut ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn area_light_source(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("AreaLightSource", loc)?;
         if kind != "diffuse" {
-            return Err(SceneError::syntax(
-                loc,
-                format!("unknown area light type \"{kind}\""),
-            ));
+            return Err(SceneError::syntax(loc, format!("unknown area light type \"{kind}\"")));
         }
         params.add_inherited(&self.state.attributes.light);
         if let Some(p) = params.get("filename") {
@@ -42,21 +34,13 @@ impl SceneBuilder {
         }
         let radiance = emission(params, "L")?;
         let two_sided = params.bool("twosided", false)?;
-        self.state.area_light = Some(AreaLightDesc {
-            radiance,
-            two_sided,
-        });
+        self.state.area_light = Some(AreaLightDesc { radiance, two_sided });
         self.warn_unused(params);
         Ok(())
     }
 
     /// `LightSource "point" ...`; the other pbrt light types are not supported yet.
-    pub fn light_source(
-        &mut self,
-        kind: &str,
-        params: &mut ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn light_source(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("LightSource", loc)?;
         match kind {
             "point" => {}
@@ -66,12 +50,7 @@ impl SceneBuilder {
                     format!("light type \"{kind}\" is not supported yet"),
                 ));
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    loc,
-                    format!("unknown light type \"{kind}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown light type \"{kind}\""))),
         }
         params.add_inherited(&self.state.attributes.light);
         let mut intensity = emission(params, "I")?;
@@ -88,10 +67,7 @@ impl SceneBuilder {
                 "the position of the point light is not finite",
             ));
         }
-        self.lights.push(LightDesc::Point {
-            position,
-            intensity,
-        });
+        self.lights.push(LightDesc::Point { position, intensity });
         self.warn_unused(params);
         Ok(())
     }
@@ -115,10 +91,7 @@ fn emission(params: &ParamSet, name: &str) -> Result<Rgb, SceneError> {
         let loc = params.get(name).map_or(&params.loc, |p| &p.loc);
         return Err(SceneError::invalid(
             loc,
-            format!(
-                "emission \"{name}\" of {} must not be negative",
-                params.owner
-            ),
+            format!("emission \"{name}\" of {} must not be negative", params.owner),
         ));
     }
     let scale = params.float("scale", 1.0)?;

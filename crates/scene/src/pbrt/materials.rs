@@ -26,12 +26,7 @@ const KNOWN_MATERIALS: &[&str] = &[
 
 impl SceneBuilder {
     /// `Material "type" ...`: the material of subsequent shapes in this attribute scope.
-    pub fn material(
-        &mut self,
-        kind: &str,
-        params: &mut ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn material(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("Material", loc)?;
         params.add_inherited(&self.state.attributes.material);
         let desc = self.material_desc(kind, params, loc)?;
@@ -40,12 +35,7 @@ impl SceneBuilder {
     }
 
     /// `MakeNamedMaterial "name" "string type" "..." ...`
-    pub fn make_named_material(
-        &mut self,
-        name: &str,
-        params: &mut ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn make_named_material(&mut self, name: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("MakeNamedMaterial", loc)?;
         params.add_inherited(&self.state.attributes.material);
         if let Some((_, first)) = self.named_materials.get(name) {
@@ -61,18 +51,14 @@ impl SceneBuilder {
             ));
         };
         let desc = self.material_desc(&kind, params, &kind_loc)?;
-        self.named_materials
-            .insert(name.to_string(), (desc, loc.clone()));
+        self.named_materials.insert(name.to_string(), (desc, loc.clone()));
         Ok(())
     }
 
     /// `NamedMaterial "name"`: resolved once the whole scene has been read.
     pub fn named_material(&mut self, name: String, loc: &Location) -> Result<(), SceneError> {
         self.require_world("NamedMaterial", loc)?;
-        self.state.material = MaterialRef::Named {
-            name,
-            loc: loc.clone(),
-        };
+        self.state.material = MaterialRef::Named { name, loc: loc.clone() };
         Ok(())
     }
 
@@ -86,12 +72,7 @@ impl SceneBuilder {
     }
 
     /// The material of `kind` from `params`; `loc` is where the type was named.
-    fn material_desc(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<MaterialDesc, SceneError> {
+    fn material_desc(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<MaterialDesc, SceneError> {
         let context = if params.owner.starts_with("MakeNamedMaterial") {
             format!(" (in {})", params.owner)
         } else {
@@ -100,11 +81,7 @@ impl SceneBuilder {
         match kind {
             "diffuse" => {
                 let reflectance = params.rgb("reflectance", Rgb::splat(0.5))?;
-                if reflectance
-                    .to_array()
-                    .iter()
-                    .any(|c| !(0.0..=1.0).contains(c))
-                {
+                if reflectance.to_array().iter().any(|c| !(0.0..=1.0).contains(c)) {
                     let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
                     return Err(SceneError::invalid(
                         p,
@@ -119,9 +96,7 @@ impl SceneBuilder {
             }
             "" | "none" => Err(SceneError::unsupported(
                 loc,
-                format!(
-                    "interface materials (material type \"{kind}\") are not supported yet{context}"
-                ),
+                format!("interface materials (material type \"{kind}\") are not supported yet{context}"),
             )),
             _ if KNOWN_MATERIALS.contains(&kind) => Err(SceneError::unsupported(
                 loc,

@@ -16,24 +16,14 @@ const MAX_PIXELS: i64 = 1 << 28;
 
 impl SceneBuilder {
     /// `Camera "perspective" ...`: the CTM is camera-from-world.
-    pub fn camera(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn camera(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Camera", loc)?;
         if kind != "perspective" {
             let message = match kind {
                 "orthographic" | "realistic" | "spherical" => {
                     format!("camera type \"{kind}\" is not supported yet")
                 }
-                _ => {
-                    return Err(SceneError::syntax(
-                        loc,
-                        format!("unknown camera type \"{kind}\""),
-                    ))
-                }
+                _ => return Err(SceneError::syntax(loc, format!("unknown camera type \"{kind}\""))),
             };
             return Err(SceneError::unsupported(loc, message));
         }
@@ -43,11 +33,7 @@ impl SceneBuilder {
 
         let fov = params.float("fov", 90.0)?;
         if !(fov > 0.0 && fov < 180.0) {
-            return Err(param_error(
-                params,
-                "fov",
-                "must be between 0 and 180 degrees",
-            ));
+            return Err(param_error(params, "fov", "must be between 0 and 180 degrees"));
         }
         let lens_radius = params.float("lensradius", 0.0)?;
         if lens_radius < 0.0 {
@@ -81,10 +67,7 @@ impl SceneBuilder {
                 ));
             };
             if frame <= 0.0 {
-                return Err(SceneError::invalid(
-                    &p.loc,
-                    "frameaspectratio must be positive",
-                ));
+                return Err(SceneError::invalid(&p.loc, "frameaspectratio must be positive"));
             }
             // pbrt's screen window for a frame aspect ratio, unless one is given explicitly.
             if screen_window.is_none() {
@@ -110,12 +93,7 @@ impl SceneBuilder {
     }
 
     /// `Film "rgb" ...` (`gbuffer` and `spectral` render as `rgb`, with a warning).
-    pub fn film(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn film(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Film", loc)?;
         match kind {
             "rgb" => {}
@@ -125,21 +103,14 @@ impl SceneBuilder {
                     format!("film \"{kind}\" is not implemented yet; rendering as \"rgb\""),
                 );
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    loc,
-                    format!("unknown film type \"{kind}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown film type \"{kind}\""))),
         }
         let width = resolution(params, "xresolution", 1280)?;
         let height = resolution(params, "yresolution", 720)?;
         if i64::from(width) * i64::from(height) > MAX_PIXELS {
             return Err(SceneError::invalid(
                 loc,
-                format!(
-                    "film resolution {width}x{height} is too large (at most {MAX_PIXELS} pixels)"
-                ),
+                format!("film resolution {width}x{height} is too large (at most {MAX_PIXELS} pixels)"),
             ));
         }
         for cropping in ["cropwindow", "pixelbounds"] {
@@ -147,11 +118,7 @@ impl SceneBuilder {
                 p.mark_used();
                 return Err(SceneError::unsupported(
                     &p.loc,
-                    format!(
-                        "parameter \"{}\" of {} is not supported yet",
-                        p.decl(),
-                        params.owner
-                    ),
+                    format!("parameter \"{}\" of {} is not supported yet", p.decl(), params.owner),
                 ));
             }
         }
@@ -166,12 +133,7 @@ impl SceneBuilder {
 
     /// `PixelFilter "box" | "triangle" | "gaussian"`; `mitchell` and `lanczos` fall back to
     /// the default Gaussian with a warning.
-    pub fn pixel_filter(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn pixel_filter(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("PixelFilter", loc)?;
         let default_radius = match kind {
             "box" => 0.5,
@@ -188,12 +150,7 @@ impl SceneBuilder {
                 self.warn_unused(params);
                 return Ok(());
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    loc,
-                    format!("unknown pixel filter \"{kind}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown pixel filter \"{kind}\""))),
         };
         let radius = Vec2::new(
             positive(params, "xradius", default_radius)?,
@@ -213,12 +170,7 @@ impl SceneBuilder {
 
     /// `Sampler "..."`: every pbrt sampler is accepted and renders with the independent
     /// sampler for now (with a warning for the others).
-    pub fn sampler(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn sampler(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Sampler", loc)?;
         let spp = match kind {
             "independent" | "sobol" | "zsobol" | "halton" | "pmj02bn" | "paddedsobol" => {
@@ -233,20 +185,12 @@ impl SceneBuilder {
                 let x = params.int("xsamples", 4)?;
                 let y = params.int("ysamples", 4)?;
                 if x <= 0 || y <= 0 {
-                    return Err(SceneError::invalid(
-                        loc,
-                        "xsamples and ysamples must be at least 1",
-                    ));
+                    return Err(SceneError::invalid(loc, "xsamples and ysamples must be at least 1"));
                 }
                 x.checked_mul(y)
                     .ok_or_else(|| SceneError::invalid(loc, "xsamples * ysamples is too large"))?
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    loc,
-                    format!("unknown sampler \"{kind}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown sampler \"{kind}\""))),
         };
         if kind != "independent" {
             self.warn(
@@ -257,10 +201,7 @@ impl SceneBuilder {
         if let Some(p) = params.ints("seed")? {
             p.mark_used();
             let [seed] = p.ints()[..] else {
-                return Err(SceneError::syntax(
-                    &p.loc,
-                    "parameter \"integer seed\" needs 1 value",
-                ));
+                return Err(SceneError::syntax(&p.loc, "parameter \"integer seed\" needs 1 value"));
             };
             self.sampler_seed = Some(seed);
         } else {
@@ -273,19 +214,20 @@ impl SceneBuilder {
     }
 
     /// `Integrator "path"`; other pbrt integrators fall back to it with a warning.
-    pub fn integrator(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn integrator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Integrator", loc)?;
         match kind {
             "path" => {}
-            "volpath" => self.warn(loc, "integrator \"volpath\" renders as \"path\" (participating media are not supported)"),
+            "volpath" => self.warn(
+                loc,
+                "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
+            ),
             "bdpt" | "mlt" | "sppm" | "simplepath" | "lightpath" | "randomwalk" | "ambientocclusion"
             | "simplevolpath" => {
-                self.warn(loc, format!("integrator \"{kind}\" is not implemented yet; using \"path\""));
+                self.warn(
+                    loc,
+                    format!("integrator \"{kind}\" is not implemented yet; using \"path\""),
+                );
             }
             _ => return Err(SceneError::syntax(loc, format!("unknown integrator \"{kind}\""))),
         }
@@ -301,12 +243,7 @@ impl SceneBuilder {
     }
 
     /// `Accelerator`: mcrender always builds its own BVH.
-    pub fn accelerator(
-        &mut self,
-        kind: &str,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn accelerator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Accelerator", loc)?;
         match kind {
             "bvh" | "kdtree" => {
@@ -317,10 +254,7 @@ impl SceneBuilder {
                 params.params().iter().for_each(|p| p.mark_used());
                 Ok(())
             }
-            _ => Err(SceneError::syntax(
-                loc,
-                format!("unknown accelerator \"{kind}\""),
-            )),
+            _ => Err(SceneError::syntax(loc, format!("unknown accelerator \"{kind}\""))),
         }
     }
 
@@ -332,10 +266,7 @@ impl SceneBuilder {
                 loc,
                 format!("color space \"{name}\" is not supported yet (only \"srgb\")"),
             )),
-            _ => Err(SceneError::syntax(
-                loc,
-                format!("unknown color space \"{name}\""),
-            )),
+            _ => Err(SceneError::syntax(loc, format!("unknown color space \"{name}\""))),
         }
     }
 
@@ -367,17 +298,9 @@ impl SceneBuilder {
             | "forcediffuse"
             | "pixelstats"
             | "wavefront" => {
-                self.warn(
-                    loc,
-                    format!("Option \"{bare}\" is not supported and was ignored"),
-                );
+                self.warn(loc, format!("Option \"{bare}\" is not supported and was ignored"));
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    loc,
-                    format!("unknown option \"{bare}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown option \"{bare}\""))),
         }
         Ok(())
     }
@@ -386,14 +309,8 @@ impl SceneBuilder {
 /// An invalid value for the parameter `name` of `params` (which must exist).
 fn param_error(params: &ParamSet, name: &str, what: &str) -> SceneError {
     match params.get(name) {
-        Some(p) => SceneError::invalid(
-            &p.loc,
-            format!("parameter \"{}\" of {} {what}", p.decl(), params.owner),
-        ),
-        None => SceneError::invalid(
-            &params.loc,
-            format!("parameter \"{name}\" of {} {what}", params.owner),
-        ),
+        Some(p) => SceneError::invalid(&p.loc, format!("parameter \"{}\" of {} {what}", p.decl(), params.owner)),
+        None => SceneError::invalid(&params.loc, format!("parameter \"{name}\" of {} {what}", params.owner)),
     }
 }
 

@@ -176,15 +176,11 @@ impl Param {
             ));
         };
         let values = match ty {
-            ParamType::Integer => {
-                ParamValues::Ints(values.iter().map(integer).collect::<Result<_, _>>()?)
-            }
+            ParamType::Integer => ParamValues::Ints(values.iter().map(integer).collect::<Result<_, _>>()?),
             ParamType::String | ParamType::Texture => {
                 ParamValues::Strings(values.iter().map(string).collect::<Result<_, _>>()?)
             }
-            ParamType::Bool => {
-                ParamValues::Bools(values.iter().map(boolean).collect::<Result<_, _>>()?)
-            }
+            ParamType::Bool => ParamValues::Bools(values.iter().map(boolean).collect::<Result<_, _>>()?),
             ParamType::Spectrum
                 if matches!(
                     values.first(),
@@ -274,10 +270,7 @@ impl Param {
         } else {
             Err(SceneError::syntax(
                 &self.loc,
-                format!(
-                    "parameter \"{}\" needs exactly one value, found {n}",
-                    self.decl()
-                ),
+                format!("parameter \"{}\" needs exactly one value, found {n}", self.decl()),
             ))
         }
     }
@@ -287,9 +280,9 @@ fn integer(tok: &Token) -> Result<i32, SceneError> {
     if let TokenKind::Number { text, .. } = &tok.kind {
         let digits = text.strip_prefix(['-', '+']).unwrap_or(text);
         if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
-            return text.parse::<i32>().map_err(|_| {
-                SceneError::invalid(&tok.loc, format!("integer \"{text}\" is out of range"))
-            });
+            return text
+                .parse::<i32>()
+                .map_err(|_| SceneError::invalid(&tok.loc, format!("integer \"{text}\" is out of range")));
         }
     }
     Err(SceneError::syntax(
@@ -405,10 +398,7 @@ impl ParamSet {
         if accepted.contains(&p.ty) {
             return Ok(Some(p));
         }
-        let expected: Vec<String> = accepted
-            .iter()
-            .map(|t| format!("\"{} {}\"", t.name(), name))
-            .collect();
+        let expected: Vec<String> = accepted.iter().map(|t| format!("\"{} {}\"", t.name(), name)).collect();
         Err(SceneError::syntax(
             &p.loc,
             format!(
@@ -581,9 +571,7 @@ mod tests {
     fn param(src: &str) -> Result<Param, SceneError> {
         let mut t = Tokenizer::new(src, "p.pbrt".into());
         let decl = t.next_token().unwrap().unwrap();
-        let TokenKind::Str(d) = decl.kind else {
-            panic!()
-        };
+        let TokenKind::Str(d) = decl.kind else { panic!() };
         let mut vals = Vec::new();
         while let Some(tok) = t.next_token().unwrap() {
             if !matches!(tok.kind, TokenKind::OpenBracket | TokenKind::CloseBracket) {

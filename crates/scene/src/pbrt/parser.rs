@@ -118,10 +118,7 @@ impl Parser {
         let tok = self.expect_token(what)?;
         match tok.kind {
             TokenKind::Str(s) => Ok((s, tok.loc)),
-            other => Err(SceneError::syntax(
-                &tok.loc,
-                format!("expected {what}, found {other}"),
-            )),
+            other => Err(SceneError::syntax(&tok.loc, format!("expected {what}, found {other}"))),
         }
     }
 
@@ -182,16 +179,11 @@ impl Parser {
             TokenKind::OpenBracket => {
                 let mut values = Vec::new();
                 loop {
-                    let t = self.expect_token(&format!(
-                        "\"]\" closing the values of parameter \"{decl}\""
-                    ))?;
+                    let t = self.expect_token(&format!("\"]\" closing the values of parameter \"{decl}\""))?;
                     match t.kind {
                         TokenKind::CloseBracket => return Ok(values),
                         TokenKind::OpenBracket => {
-                            return Err(SceneError::syntax(
-                                &t.loc,
-                                "expected a value or \"]\", found \"[\"",
-                            ))
+                            return Err(SceneError::syntax(&t.loc, "expected a value or \"]\", found \"[\""))
                         }
                         _ => values.push(t),
                     }
@@ -236,9 +228,8 @@ impl Parser {
             }
             "Rotate" => {
                 let [angle, x, y, z] = self.numbers()?;
-                let m = rotate(angle, Vec3::new(x, y, z)).ok_or_else(|| {
-                    SceneError::invalid(&loc, "Rotate: the rotation axis has zero length")
-                })?;
+                let m = rotate(angle, Vec3::new(x, y, z))
+                    .ok_or_else(|| SceneError::invalid(&loc, "Rotate: the rotation axis has zero length"))?;
                 self.builder.concat(m);
             }
             "LookAt" => {
@@ -288,10 +279,8 @@ impl Parser {
             "TransformTimes" => {
                 let [_, _] = self.numbers()?;
                 self.builder.require_options("TransformTimes", &loc)?;
-                self.builder.warn(
-                    &loc,
-                    "TransformTimes ignored: animated transforms are not supported",
-                );
+                self.builder
+                    .warn(&loc, "TransformTimes ignored: animated transforms are not supported");
             }
             "ReverseOrientation" => b.reverse_orientation(&loc)?,
             "AttributeBegin" => b.attribute_begin("AttributeBegin", &loc)?,
@@ -317,13 +306,11 @@ impl Parser {
                 self.builder.sampler(&kind, &params, &loc)?;
             }
             "Integrator" => {
-                let (kind, params) =
-                    self.kind_and_params(name, "a quoted integrator name", &loc)?;
+                let (kind, params) = self.kind_and_params(name, "a quoted integrator name", &loc)?;
                 self.builder.integrator(&kind, &params, &loc)?;
             }
             "Accelerator" => {
-                let (kind, params) =
-                    self.kind_and_params(name, "a quoted accelerator name", &loc)?;
+                let (kind, params) = self.kind_and_params(name, "a quoted accelerator name", &loc)?;
                 self.builder.accelerator(&kind, &params, &loc)?;
             }
             "Shape" => {
@@ -331,23 +318,19 @@ impl Parser {
                 self.builder.shape(&kind, &mut params, &loc)?;
             }
             "Material" => {
-                let (kind, mut params) =
-                    self.kind_and_params(name, "a quoted material type", &loc)?;
+                let (kind, mut params) = self.kind_and_params(name, "a quoted material type", &loc)?;
                 self.builder.material(&kind, &mut params, &loc)?;
             }
             "MakeNamedMaterial" => {
-                let (material, mut params) =
-                    self.kind_and_params(name, "a quoted material name", &loc)?;
-                self.builder
-                    .make_named_material(&material, &mut params, &loc)?;
+                let (material, mut params) = self.kind_and_params(name, "a quoted material name", &loc)?;
+                self.builder.make_named_material(&material, &mut params, &loc)?;
             }
             "NamedMaterial" => {
                 let (material, _) = self.expect_string("a quoted material name")?;
                 self.builder.named_material(material, &loc)?;
             }
             "AreaLightSource" => {
-                let (kind, mut params) =
-                    self.kind_and_params(name, "a quoted area light type", &loc)?;
+                let (kind, mut params) = self.kind_and_params(name, "a quoted area light type", &loc)?;
                 self.builder.area_light_source(&kind, &mut params, &loc)?;
             }
             "LightSource" => {
@@ -355,8 +338,7 @@ impl Parser {
                 self.builder.light_source(&kind, &mut params, &loc)?;
             }
             "Attribute" => {
-                let (target, params) =
-                    self.kind_and_params(name, "a quoted attribute target", &loc)?;
+                let (target, params) = self.kind_and_params(name, "a quoted attribute target", &loc)?;
                 self.builder.attribute(&target, params, &loc)?;
             }
             "Texture" => {
@@ -384,9 +366,7 @@ impl Parser {
                 let (medium, _) = self.kind_and_params(name, "a quoted medium name", &loc)?;
                 return Err(SceneError::unsupported(
                     &loc,
-                    format!(
-                        "MakeNamedMedium \"{medium}\": participating media are not supported yet"
-                    ),
+                    format!("MakeNamedMedium \"{medium}\": participating media are not supported yet"),
                 ));
             }
             "MediumInterface" => {
@@ -404,7 +384,9 @@ impl Parser {
                 if !inside.is_empty() || !outside.is_empty() {
                     return Err(SceneError::unsupported(
                         &loc,
-                        format!("MediumInterface \"{inside}\" \"{outside}\": participating media are not supported yet"),
+                        format!(
+                            "MediumInterface \"{inside}\" \"{outside}\": participating media are not supported yet"
+                        ),
                     ));
                 }
             }
@@ -426,12 +408,7 @@ impl Parser {
                 };
                 self.builder.option(&option, &text, &loc)?;
             }
-            _ => {
-                return Err(SceneError::syntax(
-                    &loc,
-                    format!("unknown directive \"{name}\""),
-                ))
-            }
+            _ => return Err(SceneError::syntax(&loc, format!("unknown directive \"{name}\""))),
         }
         Ok(())
     }
@@ -452,10 +429,7 @@ impl Parser {
         let bytes = std::fs::read(&path).map_err(|e| {
             SceneError::io(
                 loc,
-                format!(
-                    "cannot open included file \"{name}\": {}",
-                    io_error_text(&e)
-                ),
+                format!("cannot open included file \"{name}\": {}", io_error_text(&e)),
             )
         })?;
         let file: Arc<str> = path.display().to_string().into();

@@ -21,12 +21,7 @@ struct ObjectMesh {
 
 impl SceneBuilder {
     /// `Shape "name" ...`
-    pub fn shape(
-        &mut self,
-        kind: &str,
-        params: &mut ParamSet,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
+    pub fn shape(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("Shape", loc)?;
         match kind {
             "trianglemesh" | "plymesh" | "sphere" => {}
@@ -80,11 +75,7 @@ impl SceneBuilder {
         Ok(())
     }
 
-    fn triangle_mesh_params(
-        &mut self,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<ObjectMesh, SceneError> {
+    fn triangle_mesh_params(&mut self, params: &ParamSet, loc: &Location) -> Result<ObjectMesh, SceneError> {
         let Some((positions, _)) = params.point3s("P")? else {
             return Err(SceneError::syntax(
                 loc,
@@ -123,9 +114,7 @@ impl SceneBuilder {
             None => {
                 return Err(SceneError::syntax(
                     loc,
-                    format!(
-                    "Shape \"trianglemesh\" needs \"integer indices\" (P has {n} points, not 3)"
-                ),
+                    format!("Shape \"trianglemesh\" needs \"integer indices\" (P has {n} points, not 3)"),
                 ))
             }
         };
@@ -157,10 +146,7 @@ impl SceneBuilder {
                     ));
                 }
                 let loc = p.loc.clone();
-                self.warn(
-                    &loc,
-                    "\"float uv\" is pbrt-v3 syntax; read as \"point2 uv\"",
-                );
+                self.warn(&loc, "\"float uv\" is pbrt-v3 syntax; read as \"point2 uv\"");
             }
             check_count(uvs.len(), n, &p.decl(), &p.loc)?;
             return Ok(Some(uvs));
@@ -174,10 +160,7 @@ impl SceneBuilder {
             }
             let uvs: Vec<Vec2> = p.floats().chunks_exact(2).map(Vec2::from_slice).collect();
             let (loc, decl) = (p.loc.clone(), p.decl());
-            self.warn(
-                &loc,
-                format!("\"{decl}\" is pbrt-v3 syntax; read as \"point2 uv\""),
-            );
+            self.warn(&loc, format!("\"{decl}\" is pbrt-v3 syntax; read as \"point2 uv\""));
             check_count(uvs.len(), n, &decl, &loc)?;
             return Ok(Some(uvs));
         }
@@ -185,11 +168,7 @@ impl SceneBuilder {
     }
 
     /// Read the PLY file of a `plymesh`; `None` when it has no triangles (after a warning).
-    fn ply_mesh(
-        &mut self,
-        params: &ParamSet,
-        loc: &Location,
-    ) -> Result<Option<ObjectMesh>, SceneError> {
+    fn ply_mesh(&mut self, params: &ParamSet, loc: &Location) -> Result<Option<ObjectMesh>, SceneError> {
         let Some((filename, _)) = params.string("filename")? else {
             return Err(SceneError::syntax(
                 loc,
@@ -200,14 +179,9 @@ impl SceneBuilder {
         let mesh = read_ply(&path).map_err(|e| match e {
             PlyError::Io(io) => SceneError::io(
                 loc,
-                format!(
-                    "cannot open PLY file \"{filename}\": {}",
-                    io_error_text(&io)
-                ),
+                format!("cannot open PLY file \"{filename}\": {}", io_error_text(&io)),
             ),
-            PlyError::Format(msg) => {
-                SceneError::invalid(loc, format!("cannot read PLY file \"{filename}\": {msg}"))
-            }
+            PlyError::Format(msg) => SceneError::invalid(loc, format!("cannot read PLY file \"{filename}\": {msg}")),
         })?;
         if mesh.skipped_faces > 0 {
             self.warn(
@@ -219,10 +193,7 @@ impl SceneBuilder {
             );
         }
         if mesh.indices.is_empty() {
-            self.warn(
-                loc,
-                format!("PLY file \"{filename}\" has no triangles; shape ignored"),
-            );
+            self.warn(loc, format!("PLY file \"{filename}\" has no triangles; shape ignored"));
             return Ok(None);
         }
         Ok(Some(ObjectMesh {
@@ -233,11 +204,7 @@ impl SceneBuilder {
         }))
     }
 
-    fn sphere(
-        &mut self,
-        params: &ParamSet,
-        world_from_object: Transform,
-    ) -> Result<GeometryDesc, SceneError> {
+    fn sphere(&mut self, params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc, SceneError> {
         let radius = params.float("radius", 1.0)?;
         if radius <= 0.0 {
             let rloc = params.get("radius").map_or(&params.loc, |p| &p.loc);
@@ -254,7 +221,10 @@ impl SceneBuilder {
         for (name, cuts) in partial {
             if let Some(p) = params.get(name).filter(|_| cuts) {
                 let (ploc, decl) = (p.loc.clone(), p.decl());
-                self.warn(&ploc, format!("parameter \"{decl}\" of Shape \"sphere\" is not supported yet; rendering the full sphere"));
+                self.warn(
+                    &ploc,
+                    format!("parameter \"{decl}\" of Shape \"sphere\" is not supported yet; rendering the full sphere"),
+                );
             }
         }
         Ok(GeometryDesc::Sphere {
@@ -264,12 +234,7 @@ impl SceneBuilder {
     }
 }
 
-fn check_count(
-    found: usize,
-    expected: usize,
-    decl: &str,
-    loc: &Location,
-) -> Result<(), SceneError> {
+fn check_count(found: usize, expected: usize, decl: &str, loc: &Location) -> Result<(), SceneError> {
     if found == expected {
         Ok(())
     } else {
@@ -287,11 +252,7 @@ fn to_world(
     reverse_orientation: bool,
     loc: &Location,
 ) -> Result<GeometryDesc, SceneError> {
-    let positions: Vec<Vec3> = mesh
-        .positions
-        .iter()
-        .map(|&p| world_from_object.point(p))
-        .collect();
+    let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| world_from_object.point(p)).collect();
     if positions.iter().any(|p| !p.is_finite()) {
         return Err(SceneError::invalid(
             loc,

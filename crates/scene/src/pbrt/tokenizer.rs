@@ -152,9 +152,7 @@ impl Tokenizer {
                 }
                 Some('\\') => {
                     let decoded = match self.bump() {
-                        None | Some('\n') => {
-                            return Err(SceneError::syntax(&loc, "unterminated string"))
-                        }
+                        None | Some('\n') => return Err(SceneError::syntax(&loc, "unterminated string")),
                         Some('b') => '\u{8}',
                         Some('f') => '\u{c}',
                         Some('n') => '\n',
@@ -233,8 +231,7 @@ mod tests {
 
     #[test]
     fn splits_words_numbers_strings_brackets_with_locations() {
-        let toks =
-            tokens("Shape \"sphere\"\n  \"float radius\" [ 2.5 ] # comment\n\tTranslate -1 .5 1e2");
+        let toks = tokens("Shape \"sphere\"\n  \"float radius\" [ 2.5 ] # comment\n\tTranslate -1 .5 1e2");
         assert_eq!(
             toks,
             vec![
@@ -309,9 +306,6 @@ mod tests {
     #[test]
     fn comment_at_end_of_file() {
         assert_eq!(tokens("# only a comment"), vec![]);
-        assert_eq!(
-            tokens("A # c\r\nB"),
-            vec![(word("A"), 1, 1), (word("B"), 2, 1)]
-        );
+        assert_eq!(tokens("A # c\r\nB"), vec![(word("A"), 1, 1), (word("B"), 2, 1)]);
     }
 }

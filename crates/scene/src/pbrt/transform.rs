@@ -81,9 +81,7 @@ mod tests {
         let s = scale(Vec3::new(2.0, -1.0, 0.5));
         assert_eq!(
             s,
-            Mat4::from_cols_array(&[
-                2., 0., 0., 0., 0., -1., 0., 0., 0., 0., 0.5, 0., 0., 0., 0., 1.
-            ])
+            Mat4::from_cols_array(&[2., 0., 0., 0., 0., -1., 0., 0., 0., 0., 0.5, 0., 0., 0., 0., 1.])
         );
     }
 
@@ -114,9 +112,7 @@ mod tests {
         // Camera at (0, 1, 6.8) looking down -z: pbrt's matrix maps the eye to the origin and
         // the viewing direction to +z; up stays +y, so +x maps to -x (left-handed camera).
         let m = look_at(Vec3::new(0.0, 1.0, 6.8), Vec3::new(0.0, 1.0, 0.0), Vec3::Y).unwrap();
-        let expected = Mat4::from_cols_array(&[
-            -1., 0., 0., 0., 0., 1., 0., 0., 0., 0., -1., 0., 0., -1., 6.8, 1.,
-        ]);
+        let expected = Mat4::from_cols_array(&[-1., 0., 0., 0., 0., 1., 0., 0., 0., 0., -1., 0., 0., -1., 6.8, 1.]);
         assert!(m.abs_diff_eq(expected, 1e-6), "{m:?}");
         // A general case against hand-computed vectors.
         let eye = Vec3::new(1.0, 2.0, 3.0);
@@ -131,9 +127,7 @@ mod tests {
 
     #[test]
     fn pbrt_arrays_are_columns() {
-        let v: [f32; 16] = [
-            1., 0., 0., 0., 0., 1., 0., 0., 0., 0., -1., 0., 0., -1., 6.8, 1.,
-        ];
+        let v: [f32; 16] = [1., 0., 0., 0., 0., 1., 0., 0., 0., 0., -1., 0., 0., -1., 6.8, 1.];
         let m = from_pbrt_array(&v);
         assert_eq!(m.transform_point3(Vec3::new(0.0, 1.0, 6.8)), Vec3::ZERO);
     }
