@@ -1,1 +1,17 @@
-//! x
+//! mcrender-scene: loaders that turn scene files into the plain
+//! [`SceneDescription`](mcrender_core::scene::SceneDescription) the core renders, and the
+//! image writers and readers (PNG, EXR).
+//!
+//! * [`pbrt`]: the pbrt-v4 scene format ([`pbrt::load_file`], [`pbrt::load_str`]);
+//! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
+//! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
+//!   [`image_io::write_exr_layers`], [`image_io::read_exr`].
+
+mod error;
+pub mod image_io;
+pub mod pbrt;
+pub mod ply;
+
+pub use error::{io_error_text, Location, SceneError, SceneErrorKind};
+pub use image_io::{read_exr, write_exr_layers, write_image, ImageError, ImageRgb};
+pub use pbrt::{load_file, load_str, LoadedScene};

@@ -1,0 +1,98 @@
+//! OpenEXR output and input with the `exr` crate: linear 32-bit float RGB, optionally
+//! with extra named layers (channels `layer.R`, `layer.G`, `layer.B`).
+
+use std::path::Path;
+
+use exr::prelude::{
+    read_first_rgba_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes,
+    WritableImage,
+};
+use mcrender_core::color::Rgb;
+
+use super::atomic::write_atomically;
+use super::{check_size, ImageError, ImageRgb};
+
+/// Write an EXR of `width` x `height` with one RGB layer per entry of `layers`, atomically.
+/// A layer named `""` is written as the plain `R`, `G`, `B` channels; a layer `"variance"`
+/// as `variance.R`, `variance.G`, `variance.B`. Samples are 32-bit floats, ZIP-compressed.
+///
+/// # Errors
+/// No layers, a layer whose pixel count does not match, duplicate layer names, or an I/O
+/// or encoder failure (the target is then left untouched).
+pub fn write_exr_layers(path: &Path, width: u32, height: u32, layers: &[(&str, &[Rgb])]) -> Result<(), ImageError> {
+    if layers.is_empty() {
+        return Err(ImageError::InvalidImage {
+            path: path.to_path_buf(),
+            message: "no layers to write".into(),
+        });
+    }
+    let mut channels = Vec::with_capacity(3 * layers.len());
+    for (i, (name, pixels)) in layers.iter().enumerate() {
+        check_size(path, width, height, pixels.len())?;
+        if layers[..i].iter().any(|(other, _)| other == name) {
+            return Err(ImageError::InvalidImage {
+                path: path.to_path_buf(),
+                message: format!("layer \"{name}\" appears twice"),
+            });
+        }
+        let prefix = if name.is_empty() {
+            String::new()
+        } else {
+            format!("{name}.")
+        };
+        for (c, channel) in ["R", "G", "B"].iter().enumerate() {
+            let samples: Vec<f32> = pixels.iter().map(|p| p.to_array()[c]).collect();
+            channels.push(AnyChannel::new(
+                format!("{prefix}{channel}").as_str(),
+                FlatSamples::F32(samples),
+            ));
+        }
+    }
+    let layer = Layer::new(
+        (width as usize, height as usize),
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(channels.into()),
+    );
+    let image = Image::from_layer(layer);
+    write_atomically(path, |out| {
+        image.write().to_buffered(out).map_err(|e| ImageError::Codec {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    })
+}
+
+/// Read the first RGB layer of an EXR file (any sample type; alpha is ignored).
+///
+/// # Errors
+/// When the file cannot be read or has no R, G, B channels.
+pub fn read_exr(path: &Path) -> Result<ImageRgb, ImageError> {
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |size, _| (size.width(), vec![Rgb::BLACK; size.area()]),
+        |(width, pixels): &mut (usize, Vec<Rgb>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            pixels[pos.y() * *width + pos.x()] = Rgb::new(r, g, b);
+        },
+    )
+    .map_err(|e| match e {
+        exr::error::Error::Io(source) => ImageError::Io {
+            path: path.to_path_buf(),
+            source,
+        },
+        other => ImageError::Codec {
+            path: path.to_path_buf(),
+            message: other.to_string(),
+        },
+    })?;
+    let size = image.layer_data.size;
+    let (_, pixels) = image.layer_data.channel_data.pixels;
+    let (width, height) = (u32::try_from(size.width()), u32::try_from(size.height()));
+    match (width, height) {
+        (Ok(width), Ok(height)) => Ok(ImageRgb { width, height, pixels }),
+        _ => Err(ImageError::InvalidImage {
+            path: path.to_path_buf(),
+            message: "image too large".into(),
+        }),
+    }
+}

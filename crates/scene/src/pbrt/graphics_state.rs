@@ -1,0 +1,71 @@
+//! The graphics state that `AttributeBegin`/`AttributeEnd` save and restore: the current
+//! transformation matrix, `ReverseOrientation`, the current material and area light, and
+//! the parameters set by `Attribute` directives.
+
+use glam::Mat4;
+use mcrender_core::color::Rgb;
+use mcrender_core::scene::{AreaLightDesc, MaterialDesc};
+
+use super::params::Param;
+use crate::error::Location;
+
+/// The material shapes get: a material given inline by `Material`, or a name from
+/// `NamedMaterial`, resolved when the whole file has been read (as pbrt does, so the
+/// definition may come later in the file).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialRef {
+    /// `Material "type" ...` (or the default material).
+    Inline(MaterialDesc),
+    /// `NamedMaterial "name"`, with where it was selected.
+    Named {
+        /// The name.
+        name: String,
+        /// Location of the `NamedMaterial` directive.
+        loc: Location,
+    },
+}
+
+/// Parameters set by `Attribute "target" ...`, per target.
+#[derive(Clone, Debug, Default)]
+pub struct Attributes {
+    /// `Attribute "shape"`
+    pub shape: Vec<Param>,
+    /// `Attribute "light"`
+    pub light: Vec<Param>,
+    /// `Attribute "material"`
+    pub material: Vec<Param>,
+    /// `Attribute "medium"`
+    pub medium: Vec<Param>,
+    /// `Attribute "texture"`
+    pub texture: Vec<Param>,
+}
+
+/// The state scoped by `AttributeBegin`/`AttributeEnd`.
+#[derive(Clone, Debug)]
+pub struct GraphicsState {
+    /// Current transformation matrix (object to world inside the world block).
+    pub ctm: Mat4,
+    /// `ReverseOrientation` toggled an odd number of times.
+    pub reverse_orientation: bool,
+    /// Material for subsequent shapes.
+    pub material: MaterialRef,
+    /// Area light for subsequent shapes.
+    pub area_light: Option<AreaLightDesc>,
+    /// Parameters from `Attribute`.
+    pub attributes: Attributes,
+}
+
+impl Default for GraphicsState {
+    fn default() -> Self {
+        Self {
+            ctm: Mat4::IDENTITY,
+            reverse_orientation: false,
+            // pbrt-v4's material before any Material directive: diffuse, reflectance 0.5.
+            material: MaterialRef::Inline(MaterialDesc::Diffuse {
+                reflectance: Rgb::splat(0.5),
+            }),
+            area_light: None,
+            attributes: Attributes::default(),
+        }
+    }
+}

@@ -1,0 +1,339 @@
+//! Scene-wide options (the directives before `WorldBegin`): `Camera`, `Film`,
+//! `PixelFilter`, `Sampler`, `Integrator`, `Accelerator`, plus `Option` and `ColorSpace`.
+
+use glam::Vec2;
+use mcrender_core::math::Transform;
+use mcrender_core::scene::{CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, SamplerKind};
+
+use super::builder::SceneBuilder;
+use super::params::ParamSet;
+use crate::error::{Location, SceneError};
+
+/// Largest accepted image side, in pixels.
+const MAX_RESOLUTION: i32 = 32_768;
+/// Largest accepted pixel count.
+const MAX_PIXELS: i64 = 1 << 28;
+
+impl SceneBuilder {
+    /// `Camera "perspective" ...`: the CTM is camera-from-world.
+    pub fn camera(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("Camera", loc)?;
+        if kind != "perspective" {
+            let message = match kind {
+                "orthographic" | "realistic" | "spherical" => {
+                    format!("camera type \"{kind}\" is not supported yet")
+                }
+                _ => return Err(SceneError::syntax(loc, format!("unknown camera type \"{kind}\""))),
+            };
+            return Err(SceneError::unsupported(loc, message));
+        }
+        let camera_from_world = self.ctm_transform("the camera", loc)?;
+        let world_from_camera = camera_from_world.inverse();
+        self.set_camera_coordinate_system(world_from_camera.m);
+
+        let fov = params.float("fov", 90.0)?;
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(param_error(params, "fov", "must be between 0 and 180 degrees"));
+        }
+        let lens_radius = params.float("lensradius", 0.0)?;
+        if lens_radius < 0.0 {
+            return Err(param_error(params, "lensradius", "must not be negative"));
+        }
+        let focal_distance = params.float("focaldistance", 1e6)?;
+        if focal_distance <= 0.0 {
+            return Err(param_error(params, "focaldistance", "must be positive"));
+        }
+        let mut screen_window = None;
+        if let Some(p) = params.floats("screenwindow")? {
+            let [x0, x1, y0, y1] = p.floats()[..] else {
+                return Err(SceneError::syntax(
+                    &p.loc,
+                    "parameter \"float screenwindow\" needs 4 values",
+                ));
+            };
+            if !(x0 < x1 && y0 < y1) {
+                return Err(SceneError::invalid(
+                    &p.loc,
+                    "screenwindow must be [xmin xmax ymin ymax] with min < max",
+                ));
+            }
+            screen_window = Some([x0, x1, y0, y1]);
+        }
+        if let Some(p) = params.floats("frameaspectratio")? {
+            let [frame] = p.floats()[..] else {
+                return Err(SceneError::syntax(
+                    &p.loc,
+                    "parameter \"float frameaspectratio\" needs 1 value",
+                ));
+            };
+            if frame <= 0.0 {
+                return Err(SceneError::invalid(&p.loc, "frameaspectratio must be positive"));
+            }
+            // pbrt's screen window for a frame aspect ratio, unless one is given explicitly.
+            if screen_window.is_none() {
+                screen_window = Some(if frame > 1.0 {
+                    [-frame, frame, -1.0, 1.0]
+                } else {
+                    [-1.0, 1.0, -1.0 / frame, 1.0 / frame]
+                });
+            }
+        }
+        self.camera = CameraDesc {
+            world_from_camera: Transform {
+                m: world_from_camera.m,
+                m_inv: world_from_camera.m_inv,
+            },
+            fov_degrees: fov,
+            lens_radius,
+            focal_distance,
+            screen_window,
+        };
+        self.warn_unused(params);
+        Ok(())
+    }
+
+    /// `Film "rgb" ...` (`gbuffer` and `spectral` render as `rgb`, with a warning).
+    pub fn film(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("Film", loc)?;
+        match kind {
+            "rgb" => {}
+            "gbuffer" | "spectral" => {
+                self.warn(
+                    loc,
+                    format!("film \"{kind}\" is not implemented yet; rendering as \"rgb\""),
+                );
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown film type \"{kind}\""))),
+        }
+        let width = resolution(params, "xresolution", 1280)?;
+        let height = resolution(params, "yresolution", 720)?;
+        if i64::from(width) * i64::from(height) > MAX_PIXELS {
+            return Err(SceneError::invalid(
+                loc,
+                format!("film resolution {width}x{height} is too large (at most {MAX_PIXELS} pixels)"),
+            ));
+        }
+        for cropping in ["cropwindow", "pixelbounds"] {
+            if let Some(p) = params.get(cropping) {
+                p.mark_used();
+                return Err(SceneError::unsupported(
+                    &p.loc,
+                    format!("parameter \"{}\" of {} is not supported yet", p.decl(), params.owner),
+                ));
+            }
+        }
+        self.film = FilmDesc {
+            width: width as u32,
+            height: height as u32,
+        };
+        self.output_filename = params.string("filename")?.map(|(name, _)| name);
+        self.warn_unused(params);
+        Ok(())
+    }
+
+    /// `PixelFilter "box" | "triangle" | "gaussian"`; `mitchell` and `lanczos` fall back to
+    /// the default Gaussian with a warning.
+    pub fn pixel_filter(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("PixelFilter", loc)?;
+        let default_radius = match kind {
+            "box" => 0.5,
+            "triangle" => 2.0,
+            "gaussian" => 1.5,
+            "mitchell" | "lanczos" => {
+                self.warn(
+                    loc,
+                    format!(
+                        "pixel filter \"{kind}\" is not implemented yet; using \"gaussian\" with its defaults (radius 1.5, sigma 0.5)"
+                    ),
+                );
+                self.filter = FilterDesc::default();
+                self.warn_unused(params);
+                return Ok(());
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown pixel filter \"{kind}\""))),
+        };
+        let radius = Vec2::new(
+            positive(params, "xradius", default_radius)?,
+            positive(params, "yradius", default_radius)?,
+        );
+        self.filter = match kind {
+            "box" => FilterDesc::Box { radius },
+            "triangle" => FilterDesc::Triangle { radius },
+            _ => FilterDesc::Gaussian {
+                radius,
+                sigma: positive(params, "sigma", 0.5)?,
+            },
+        };
+        self.warn_unused(params);
+        Ok(())
+    }
+
+    /// `Sampler "..."`: every pbrt sampler is accepted and renders with the independent
+    /// sampler for now (with a warning for the others).
+    pub fn sampler(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("Sampler", loc)?;
+        let spp = match kind {
+            "independent" | "sobol" | "zsobol" | "halton" | "pmj02bn" | "paddedsobol" => {
+                let spp = params.int("pixelsamples", 16)?;
+                if spp <= 0 {
+                    return Err(param_error(params, "pixelsamples", "must be at least 1"));
+                }
+                spp
+            }
+            "stratified" => {
+                // pbrt's stratified sampler takes xsamples * ysamples samples per pixel.
+                let x = params.int("xsamples", 4)?;
+                let y = params.int("ysamples", 4)?;
+                if x <= 0 || y <= 0 {
+                    return Err(SceneError::invalid(loc, "xsamples and ysamples must be at least 1"));
+                }
+                x.checked_mul(y)
+                    .ok_or_else(|| SceneError::invalid(loc, "xsamples * ysamples is too large"))?
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown sampler \"{kind}\""))),
+        };
+        if kind != "independent" {
+            self.warn(
+                loc,
+                format!("sampler \"{kind}\" is not implemented yet; using \"independent\""),
+            );
+        }
+        if let Some(p) = params.ints("seed")? {
+            p.mark_used();
+            let [seed] = p.ints()[..] else {
+                return Err(SceneError::syntax(&p.loc, "parameter \"integer seed\" needs 1 value"));
+            };
+            self.sampler_seed = Some(seed);
+        } else {
+            self.sampler_seed = None;
+        }
+        self.sampler.kind = SamplerKind::Independent;
+        self.sampler.samples_per_pixel = spp as u32;
+        self.warn_unused(params);
+        Ok(())
+    }
+
+    /// `Integrator "path"`; other pbrt integrators fall back to it with a warning.
+    pub fn integrator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("Integrator", loc)?;
+        match kind {
+            "path" => {}
+            "volpath" => self.warn(
+                loc,
+                "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
+            ),
+            "bdpt" | "mlt" | "sppm" | "simplepath" | "lightpath" | "randomwalk" | "ambientocclusion"
+            | "simplevolpath" => {
+                self.warn(
+                    loc,
+                    format!("integrator \"{kind}\" is not implemented yet; using \"path\""),
+                );
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown integrator \"{kind}\""))),
+        }
+        let max_depth = params.int("maxdepth", 5)?;
+        if max_depth < 0 {
+            return Err(param_error(params, "maxdepth", "must not be negative"));
+        }
+        self.integrator = IntegratorDesc {
+            max_depth: max_depth as u32,
+        };
+        self.warn_unused(params);
+        Ok(())
+    }
+
+    /// `Accelerator`: mcrender always builds its own BVH.
+    pub fn accelerator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("Accelerator", loc)?;
+        match kind {
+            "bvh" | "kdtree" => {
+                self.warn(
+                    loc,
+                    format!("Accelerator \"{kind}\" ignored; mcrender always uses its own BVH"),
+                );
+                params.params().iter().for_each(|p| p.mark_used());
+                Ok(())
+            }
+            _ => Err(SceneError::syntax(loc, format!("unknown accelerator \"{kind}\""))),
+        }
+    }
+
+    /// `ColorSpace "name"`: only sRGB, the space mcrender renders in.
+    pub fn color_space(&mut self, name: &str, loc: &Location) -> Result<(), SceneError> {
+        match name {
+            "srgb" => Ok(()),
+            "aces2065-1" | "rec2020" | "dci-p3" => Err(SceneError::unsupported(
+                loc,
+                format!("color space \"{name}\" is not supported yet (only \"srgb\")"),
+            )),
+            _ => Err(SceneError::syntax(loc, format!("unknown color space \"{name}\""))),
+        }
+    }
+
+    /// `Option "name" value` (pbrt's command-line options set from the file).
+    pub fn option(&mut self, name: &str, value: &str, loc: &Location) -> Result<(), SceneError> {
+        // Accept both `Option "seed" 3` and `Option "integer seed" 3`.
+        let bare = name.split_whitespace().last().unwrap_or("");
+        let normalized: String = bare
+            .chars()
+            .filter(|c| *c != '_' && *c != '-')
+            .collect::<String>()
+            .to_lowercase();
+        match normalized.as_str() {
+            "seed" => {
+                let seed = value.parse::<i32>().map_err(|_| {
+                    SceneError::syntax(
+                        loc,
+                        format!("expected an integer value for Option \"seed\", found \"{value}\""),
+                    )
+                })?;
+                self.option_seed = Some(seed);
+            }
+            "disablepixeljitter"
+            | "disabletexturefiltering"
+            | "disablewavelengthjitter"
+            | "displacementedgescale"
+            | "msereferenceimage"
+            | "msereferenceout"
+            | "forcediffuse"
+            | "pixelstats"
+            | "wavefront" => {
+                self.warn(loc, format!("Option \"{bare}\" is not supported and was ignored"));
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown option \"{bare}\""))),
+        }
+        Ok(())
+    }
+}
+
+/// An invalid value for the parameter `name` of `params` (which must exist).
+fn param_error(params: &ParamSet, name: &str, what: &str) -> SceneError {
+    match params.get(name) {
+        Some(p) => SceneError::invalid(&p.loc, format!("parameter \"{}\" of {} {what}", p.decl(), params.owner)),
+        None => SceneError::invalid(&params.loc, format!("parameter \"{name}\" of {} {what}", params.owner)),
+    }
+}
+
+/// A positive float parameter.
+fn positive(params: &ParamSet, name: &str, default: f32) -> Result<f32, SceneError> {
+    let v = params.float(name, default)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(param_error(params, name, "must be positive"))
+    }
+}
+
+/// An image resolution parameter in `1..=MAX_RESOLUTION`.
+fn resolution(params: &ParamSet, name: &str, default: i32) -> Result<i32, SceneError> {
+    let v = params.int(name, default)?;
+    if (1..=MAX_RESOLUTION).contains(&v) {
+        Ok(v)
+    } else {
+        Err(param_error(
+            params,
+            name,
+            &format!("must be between 1 and {MAX_RESOLUTION}, found {v}"),
+        ))
+    }
+}

@@ -1,0 +1,276 @@
+//! Shapes: `trianglemesh`, `plymesh` and `sphere`. Meshes are moved to world space here
+//! (points by the CTM, normals by its inverse transpose, negated under
+//! `ReverseOrientation` as pbrt does, then normalised); spheres keep their transform.
+
+use glam::{Vec2, Vec3};
+use mcrender_core::math::Transform;
+use mcrender_core::scene::{GeometryDesc, ShapeDesc, TriangleMeshDesc};
+
+use super::builder::SceneBuilder;
+use super::params::{ParamSet, ParamType};
+use crate::error::{io_error_text, Location, SceneError};
+use crate::ply::{read_ply, PlyError};
+
+/// A mesh in object space, before the CTM is applied.
+struct ObjectMesh {
+    positions: Vec<Vec3>,
+    indices: Vec<u32>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+}
+
+impl SceneBuilder {
+    /// `Shape "name" ...`
+    pub fn shape(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
+        self.require_world("Shape", loc)?;
+        match kind {
+            "trianglemesh" | "plymesh" | "sphere" => {}
+            "disk" | "cylinder" | "bilinearmesh" | "loopsubdiv" | "curve" => {
+                return Err(SceneError::unsupported(
+                    loc,
+                    format!("shape \"{kind}\" is not supported yet"),
+                ));
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown shape \"{kind}\""))),
+        }
+        params.add_inherited(&self.state.attributes.shape);
+        let world_from_object = self.ctm_transform(&format!("Shape \"{kind}\""), loc)?;
+        let reverse = self.state.reverse_orientation;
+        let geometry = match kind {
+            "trianglemesh" => {
+                let mesh = self.triangle_mesh_params(params, loc)?;
+                to_world(mesh, &world_from_object, reverse, loc)?
+            }
+            "plymesh" => {
+                let Some(mesh) = self.ply_mesh(params, loc)? else {
+                    self.warn_unused(params);
+                    return Ok(());
+                };
+                to_world(mesh, &world_from_object, reverse, loc)?
+            }
+            _ => self.sphere(params, world_from_object)?,
+        };
+        for name in ["alpha", "displacement", "emissionfilename"] {
+            if let Some(p) = params.get(name) {
+                p.mark_used();
+                self.warn(
+                    &p.loc,
+                    format!(
+                        "parameter \"{}\" of {} is not supported yet and was ignored",
+                        p.decl(),
+                        params.owner
+                    ),
+                );
+            }
+        }
+        self.warn_unused(params);
+        let flip_normals = self.state.reverse_orientation ^ world_from_object.swaps_handedness();
+        let shape = ShapeDesc {
+            geometry,
+            material: 0,
+            area_light: self.state.area_light,
+            flip_normals,
+        };
+        self.shapes.push((shape, self.state.material.clone()));
+        Ok(())
+    }
+
+    fn triangle_mesh_params(&mut self, params: &ParamSet, loc: &Location) -> Result<ObjectMesh, SceneError> {
+        let Some((positions, _)) = params.point3s("P")? else {
+            return Err(SceneError::syntax(
+                loc,
+                "Shape \"trianglemesh\" needs a \"point3 P\" parameter",
+            ));
+        };
+        let n = positions.len();
+        let indices: Vec<u32> = match params.ints("indices")? {
+            Some(p) => {
+                if p.ints().is_empty() || p.ints().len() % 3 != 0 {
+                    return Err(SceneError::invalid(
+                        &p.loc,
+                        format!(
+                            "\"integer indices\" needs a non-zero multiple of 3 values, found {}",
+                            p.ints().len()
+                        ),
+                    ));
+                }
+                p.ints()
+                    .iter()
+                    .map(|&i| {
+                        usize::try_from(i)
+                            .ok()
+                            .filter(|&i| i < n)
+                            .map(|i| i as u32)
+                            .ok_or_else(|| {
+                                SceneError::invalid(
+                                    &p.loc,
+                                    format!("vertex index {i} is out of range (P has {n} points)"),
+                                )
+                            })
+                    })
+                    .collect::<Result<_, _>>()?
+            }
+            None if n == 3 => vec![0, 1, 2],
+            None => {
+                return Err(SceneError::syntax(
+                    loc,
+                    format!("Shape \"trianglemesh\" needs \"integer indices\" (P has {n} points, not 3)"),
+                ))
+            }
+        };
+        let normals = match params.normals("N")? {
+            Some((normals, nloc)) => {
+                check_count(normals.len(), n, "normal N", &nloc)?;
+                Some(normals)
+            }
+            None => None,
+        };
+        let uvs = self.uvs(params, n)?;
+        Ok(ObjectMesh {
+            positions,
+            indices,
+            normals,
+            uvs,
+        })
+    }
+
+    /// Texture coordinates: pbrt-v4's `point2 uv`, or the legacy `float uv` / `float st`.
+    fn uvs(&mut self, params: &ParamSet, n: usize) -> Result<Option<Vec<Vec2>>, SceneError> {
+        if let Some(p) = params.lookup("uv", &[ParamType::Point2, ParamType::Float])? {
+            let uvs: Vec<Vec2> = p.floats().chunks_exact(2).map(Vec2::from_slice).collect();
+            if p.ty == ParamType::Float {
+                if p.floats().len() % 2 != 0 {
+                    return Err(SceneError::syntax(
+                        &p.loc,
+                        "parameter \"float uv\" needs an even number of values",
+                    ));
+                }
+                let loc = p.loc.clone();
+                self.warn(&loc, "\"float uv\" is pbrt-v3 syntax; read as \"point2 uv\"");
+            }
+            check_count(uvs.len(), n, &p.decl(), &p.loc)?;
+            return Ok(Some(uvs));
+        }
+        if let Some(p) = params.lookup("st", &[ParamType::Point2, ParamType::Float])? {
+            if p.floats().len() % 2 != 0 {
+                return Err(SceneError::syntax(
+                    &p.loc,
+                    format!("parameter \"{}\" needs an even number of values", p.decl()),
+                ));
+            }
+            let uvs: Vec<Vec2> = p.floats().chunks_exact(2).map(Vec2::from_slice).collect();
+            let (loc, decl) = (p.loc.clone(), p.decl());
+            self.warn(&loc, format!("\"{decl}\" is pbrt-v3 syntax; read as \"point2 uv\""));
+            check_count(uvs.len(), n, &decl, &loc)?;
+            return Ok(Some(uvs));
+        }
+        Ok(None)
+    }
+
+    /// Read the PLY file of a `plymesh`; `None` when it has no triangles (after a warning).
+    fn ply_mesh(&mut self, params: &ParamSet, loc: &Location) -> Result<Option<ObjectMesh>, SceneError> {
+        let Some((filename, _)) = params.string("filename")? else {
+            return Err(SceneError::syntax(
+                loc,
+                "Shape \"plymesh\" needs a \"string filename\" parameter",
+            ));
+        };
+        let path = self.resolve(&filename);
+        let mesh = read_ply(&path).map_err(|e| match e {
+            PlyError::Io(io) => SceneError::io(
+                loc,
+                format!("cannot open PLY file \"{filename}\": {}", io_error_text(&io)),
+            ),
+            PlyError::Format(msg) => SceneError::invalid(loc, format!("cannot read PLY file \"{filename}\": {msg}")),
+        })?;
+        if mesh.skipped_faces > 0 {
+            self.warn(
+                loc,
+                format!(
+                    "PLY file \"{filename}\": skipped {} faces that are neither triangles nor quads",
+                    mesh.skipped_faces
+                ),
+            );
+        }
+        if mesh.indices.is_empty() {
+            self.warn(loc, format!("PLY file \"{filename}\" has no triangles; shape ignored"));
+            return Ok(None);
+        }
+        Ok(Some(ObjectMesh {
+            positions: mesh.positions,
+            indices: mesh.indices,
+            normals: mesh.normals,
+            uvs: mesh.uvs,
+        }))
+    }
+
+    fn sphere(&mut self, params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc, SceneError> {
+        let radius = params.float("radius", 1.0)?;
+        if radius <= 0.0 {
+            let rloc = params.get("radius").map_or(&params.loc, |p| &p.loc);
+            return Err(SceneError::invalid(
+                rloc,
+                format!("sphere radius must be positive, found {radius}"),
+            ));
+        }
+        let partial = [
+            ("zmin", params.float("zmin", -radius)? > -radius),
+            ("zmax", params.float("zmax", radius)? < radius),
+            ("phimax", params.float("phimax", 360.0)? < 360.0),
+        ];
+        for (name, cuts) in partial {
+            if let Some(p) = params.get(name).filter(|_| cuts) {
+                let (ploc, decl) = (p.loc.clone(), p.decl());
+                self.warn(
+                    &ploc,
+                    format!("parameter \"{decl}\" of Shape \"sphere\" is not supported yet; rendering the full sphere"),
+                );
+            }
+        }
+        Ok(GeometryDesc::Sphere {
+            radius,
+            world_from_object,
+        })
+    }
+}
+
+fn check_count(found: usize, expected: usize, decl: &str, loc: &Location) -> Result<(), SceneError> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(
+            loc,
+            format!("\"{decl}\" has {found} values but P has {expected} points"),
+        ))
+    }
+}
+
+/// Move an object-space mesh to world space.
+fn to_world(
+    mesh: ObjectMesh,
+    world_from_object: &Transform,
+    reverse_orientation: bool,
+    loc: &Location,
+) -> Result<GeometryDesc, SceneError> {
+    let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| world_from_object.point(p)).collect();
+    if positions.iter().any(|p| !p.is_finite()) {
+        return Err(SceneError::invalid(
+            loc,
+            "mesh vertices are not finite after transformation to world space",
+        ));
+    }
+    let normals = mesh.normals.map(|normals| {
+        let sign = if reverse_orientation { -1.0 } else { 1.0 };
+        // A zero normal stays zero: pbrt then falls back to the geometric normal.
+        normals
+            .iter()
+            .map(|&n| (sign * world_from_object.normal(n)).normalize_or_zero())
+            .collect()
+    });
+    Ok(GeometryDesc::TriangleMesh(TriangleMeshDesc {
+        positions,
+        indices: mesh.indices,
+        normals,
+        uvs: mesh.uvs,
+    }))
+}

@@ -1,0 +1,403 @@
+//! One test per directive family: transforms, attribute scopes, orientation, materials,
+//! lights, options and `Include`, each against hand-computed values.
+
+use std::path::Path;
+
+use mcrender_core::color::Rgb;
+use mcrender_core::math::{Mat4, Vec2, Vec3};
+use mcrender_core::scene::{
+    AreaLightDesc, FilterDesc, GeometryDesc, LightDesc, MaterialDesc, ShapeDesc, TriangleMeshDesc,
+};
+use mcrender_scene::pbrt::{load_str, LoadedScene};
+
+fn load(src: &str) -> LoadedScene {
+    match load_str(src, "scene.pbrt", Path::new("")) {
+        Ok(s) => s,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// The world-from-object matrix of the only (or first) sphere.
+fn sphere_matrix(s: &LoadedScene, i: usize) -> Mat4 {
+    match &s.description.shapes[i].geometry {
+        GeometryDesc::Sphere { world_from_object, .. } => world_from_object.m,
+        other => panic!("not a sphere: {other:?}"),
+    }
+}
+
+fn mesh(s: &ShapeDesc) -> &TriangleMeshDesc {
+    match &s.geometry {
+        GeometryDesc::TriangleMesh(m) => m,
+        other => panic!("not a mesh: {other:?}"),
+    }
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() < 1e-5
+}
+
+const TRIANGLE: &str = "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0]";
+
+#[test]
+fn translate_scale_rotate_compose_in_order() {
+    let s = load("WorldBegin\nTranslate 1 2 3\nShape \"sphere\"\nScale 2 3 4\nShape \"sphere\"\nRotate 90 0 0 1\nShape \"sphere\"");
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
+    // CTM = T * S: scale first, then translate.
+    let ts = sphere_matrix(&s, 1);
+    assert_eq!(ts.transform_point3(Vec3::ONE), Vec3::new(3.0, 5.0, 7.0));
+    // CTM = T * S * R: (1, 0, 0) -> R -> (0, 1, 0) -> S -> (0, 3, 0) -> T -> (1, 5, 3).
+    let tsr = sphere_matrix(&s, 2);
+    assert!(close(tsr.transform_point3(Vec3::X), Vec3::new(1.0, 5.0, 3.0)));
+}
+
+#[test]
+fn transform_replaces_and_concat_transform_multiplies() {
+    // The 16 numbers are the matrix's columns (pbrt transposes its row-major reading).
+    let s = load(
+        "WorldBegin\nTranslate 5 5 5\nTransform [1 0 0 0  0 1 0 0  0 0 1 0  1 2 3 1]\nShape \"sphere\"\n\
+         ConcatTransform [2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1]\nShape \"sphere\"\nIdentity\nShape \"sphere\"",
+    );
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)));
+    assert_eq!(sphere_matrix(&s, 1).transform_point3(Vec3::X), Vec3::new(3.0, 2.0, 3.0));
+    assert_eq!(sphere_matrix(&s, 2), Mat4::IDENTITY);
+}
+
+#[test]
+fn look_at_sets_the_camera() {
+    let s = load("LookAt 0 1 6.8  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 30 \"float lensradius\" 0.1 \"float focaldistance\" 5\nWorldBegin");
+    let cam = &s.description.camera;
+    let w = cam.world_from_camera;
+    assert!(close(w.point(Vec3::ZERO), Vec3::new(0.0, 1.0, 6.8)));
+    assert!(close(w.vector(Vec3::Z), -Vec3::Z));
+    assert!(close(w.vector(Vec3::Y), Vec3::Y));
+    // pbrt's camera space is left-handed: +x is to the right when looking down +z.
+    assert!(close(w.vector(Vec3::X), -Vec3::X));
+    assert!((w.m * w.m_inv).abs_diff_eq(Mat4::IDENTITY, 1e-5));
+    assert_eq!((cam.fov_degrees, cam.lens_radius, cam.focal_distance), (30.0, 0.1, 5.0));
+    assert_eq!(cam.screen_window, None);
+}
+
+#[test]
+fn world_begin_resets_the_ctm() {
+    let s = load("Translate 1 0 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"");
+    assert_eq!(sphere_matrix(&s, 0), Mat4::IDENTITY);
+    assert!(close(
+        s.description.camera.world_from_camera.point(Vec3::ZERO),
+        Vec3::new(-1.0, 0.0, 0.0)
+    ));
+}
+
+#[test]
+fn attribute_scopes_restore_transform_material_light_and_orientation() {
+    let s = load(
+        "WorldBegin\nAttributeBegin\n  Translate 1 0 0\n  Material \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\n  \
+         AreaLightSource \"diffuse\" \"rgb L\" [1 2 3] \"float scale\" 2 \"bool twosided\" true\n  ReverseOrientation\n  \
+         Shape \"sphere\"\nAttributeEnd\nShape \"sphere\"\nTransformBegin\nTranslate 0 1 0\nShape \"sphere\"\nTransformEnd\nShape \"sphere\"",
+    );
+    let d = &s.description;
+    let inner = &d.shapes[0];
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::X));
+    assert_eq!(
+        d.materials[inner.material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::new(0.1, 0.2, 0.3)
+        }
+    );
+    assert_eq!(
+        inner.area_light,
+        Some(AreaLightDesc {
+            radiance: Rgb::new(2.0, 4.0, 6.0),
+            two_sided: true
+        })
+    );
+    assert!(inner.flip_normals);
+    let outer = &d.shapes[1];
+    assert_eq!(sphere_matrix(&s, 1), Mat4::IDENTITY);
+    assert_eq!(
+        d.materials[outer.material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::splat(0.5)
+        }
+    );
+    assert_eq!(outer.area_light, None);
+    assert!(!outer.flip_normals);
+    assert_eq!(sphere_matrix(&s, 2), Mat4::from_translation(Vec3::Y));
+    assert_eq!(sphere_matrix(&s, 3), Mat4::IDENTITY);
+    assert!(s
+        .warnings
+        .iter()
+        .any(|w| w.starts_with("scene.pbrt:10:1: warning: TransformBegin/TransformEnd are deprecated")));
+}
+
+#[test]
+fn flip_normals_is_reverse_orientation_xor_handedness() {
+    let s = load(&format!(
+        "WorldBegin\n{TRIANGLE}\nAttributeBegin\nScale -1 1 1\n{TRIANGLE}\nReverseOrientation\n{TRIANGLE}\nAttributeEnd\n\
+         ReverseOrientation\n{TRIANGLE}"
+    ));
+    let flips: Vec<bool> = s.description.shapes.iter().map(|s| s.flip_normals).collect();
+    assert_eq!(flips, vec![false, true, false, true]);
+}
+
+#[test]
+fn mesh_is_moved_to_world_space_with_normals_and_uvs() {
+    let s = load(
+        "WorldBegin\nTranslate 0 0 5\nScale 2 1 1\nReverseOrientation\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n\
+         \"integer indices\" [0 1 2 2 1 3] \"normal N\" [1 0 1 1 0 1 1 0 1 0 0 0] \"point2 uv\" [0 0 1 0 0 1 1 1]",
+    );
+    let m = mesh(&s.description.shapes[0]);
+    assert_eq!(m.positions[3], Vec3::new(2.0, 1.0, 5.0));
+    assert_eq!(m.indices, vec![0, 1, 2, 2, 1, 3]);
+    // Normals go by the inverse transpose: (1, 0, 1) -> (0.5, 0, 1), normalised, then
+    // negated by ReverseOrientation (as pbrt does). A zero normal stays zero.
+    let n = m.normals.as_ref().unwrap();
+    assert!(close(n[0], -Vec3::new(0.5, 0.0, 1.0).normalize()));
+    assert_eq!(n[3], Vec3::ZERO);
+    assert_eq!(m.uvs.as_ref().unwrap()[3], Vec2::ONE);
+}
+
+#[test]
+fn three_vertices_need_no_indices_and_legacy_uv_warns() {
+    let s = load("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"float uv\" [0 0 1 0 0 1]");
+    let m = mesh(&s.description.shapes[0]);
+    assert_eq!(m.indices, vec![0, 1, 2]);
+    assert_eq!(m.uvs.as_ref().unwrap()[1], Vec2::X);
+    assert!(
+        s.warnings.iter().any(|w| w.contains("\"float uv\" is pbrt-v3 syntax")),
+        "{:?}",
+        s.warnings
+    );
+}
+
+#[test]
+fn named_materials_are_resolved_and_deduplicated() {
+    let s = load(
+        "WorldBegin\nNamedMaterial \"later\"\nShape \"sphere\"\n\
+         MakeNamedMaterial \"later\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.2 0.2 0.2]\n\
+         MakeNamedMaterial \"same\" \"string type\" [\"diffuse\"] \"rgb reflectance\" [0.2 0.2 0.2]\n\
+         NamedMaterial \"same\"\nShape \"sphere\"\nMaterial \"diffuse\"\nShape \"sphere\"\nShape \"sphere\"",
+    );
+    let d = &s.description;
+    assert_eq!(d.materials.len(), 2);
+    assert_eq!(d.shapes[0].material, d.shapes[1].material);
+    assert_eq!(d.shapes[2].material, d.shapes[3].material);
+    assert_ne!(d.shapes[0].material, d.shapes[2].material);
+    assert_eq!(
+        d.materials[d.shapes[2].material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::splat(0.5)
+        }
+    );
+}
+
+#[test]
+fn point_light_is_transformed_and_scaled() {
+    let s = load(
+        "WorldBegin\nTranslate 0 2 0\nLightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 2 \"point3 from\" [1 0 0]\n\
+         LightSource \"point\" \"float power\" 100\n\
+         LightSource \"point\" \"spectrum I\" \"stdillum-D65\" \"float scale\" 3",
+    );
+    let lights = &s.description.lights;
+    assert_eq!(
+        lights[0],
+        LightDesc::Point {
+            position: Vec3::new(1.0, 2.0, 0.0),
+            intensity: Rgb::new(2.0, 4.0, 6.0)
+        }
+    );
+    let LightDesc::Point { intensity, .. } = lights[1];
+    assert!((intensity.r - 100.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-4);
+    let LightDesc::Point { intensity, .. } = lights[2];
+    assert_eq!(intensity, Rgb::splat(3.0));
+}
+
+#[test]
+fn options_are_read() {
+    let s = load(
+        "Film \"rgb\" \"integer xresolution\" 320 \"integer yresolution\" 200 \"string filename\" \"out.exr\" \"float iso\" 100\n\
+         PixelFilter \"gaussian\" \"float xradius\" 2 \"float yradius\" 3 \"float sigma\" 0.7\n\
+         Sampler \"independent\" \"integer pixelsamples\" 7 \"integer seed\" 42\nIntegrator \"volpath\" \"integer maxdepth\" 3\n\
+         Camera \"perspective\" \"float screenwindow\" [-1 1 -0.5 0.5]\nWorldBegin",
+    );
+    let d = &s.description;
+    assert_eq!((d.film.width, d.film.height), (320, 200));
+    assert_eq!(s.output_filename.as_deref(), Some("out.exr"));
+    assert_eq!(
+        d.filter,
+        FilterDesc::Gaussian {
+            radius: Vec2::new(2.0, 3.0),
+            sigma: 0.7
+        }
+    );
+    assert_eq!((d.sampler.samples_per_pixel, d.sampler.seed), (7, 42));
+    assert_eq!(d.integrator.max_depth, 3);
+    assert_eq!(d.camera.screen_window, Some([-1.0, 1.0, -0.5, 0.5]));
+    let warnings = s.warnings.join("\n");
+    assert!(
+        warnings.contains(
+            "scene.pbrt:1:92: warning: parameter \"float iso\" of Film \"rgb\" is not supported and was ignored"
+        ),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("integrator \"volpath\" renders as \"path\""),
+        "{warnings}"
+    );
+    assert!(warnings.contains("the scene has no lights"), "{warnings}");
+}
+
+#[test]
+fn defaults_match_pbrt() {
+    let s = load("WorldBegin\nShape \"sphere\"");
+    let d = &s.description;
+    assert_eq!((d.film.width, d.film.height), (1280, 720));
+    assert_eq!(d.integrator.max_depth, 5);
+    assert_eq!(d.sampler.samples_per_pixel, 16);
+    assert_eq!(d.camera.fov_degrees, 90.0);
+    assert_eq!(d.camera.world_from_camera.m, Mat4::IDENTITY);
+    let GeometryDesc::Sphere { radius, .. } = d.shapes[0].geometry else {
+        panic!()
+    };
+    assert_eq!(radius, 1.0);
+}
+
+#[test]
+fn filter_defaults_and_fallbacks() {
+    let radius = |src: &str| load(&format!("{src}\nWorldBegin")).description.filter;
+    assert_eq!(
+        radius("PixelFilter \"box\""),
+        FilterDesc::Box {
+            radius: Vec2::splat(0.5)
+        }
+    );
+    assert_eq!(
+        radius("PixelFilter \"triangle\""),
+        FilterDesc::Triangle {
+            radius: Vec2::splat(2.0)
+        }
+    );
+    assert_eq!(
+        radius("PixelFilter \"gaussian\""),
+        FilterDesc::Gaussian {
+            radius: Vec2::splat(1.5),
+            sigma: 0.5
+        }
+    );
+    let s = load("PixelFilter \"mitchell\" \"float B\" 0.3\nWorldBegin");
+    assert_eq!(
+        s.description.filter,
+        FilterDesc::Gaussian {
+            radius: Vec2::splat(1.5),
+            sigma: 0.5
+        }
+    );
+    assert!(s.warnings[0].contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
+}
+
+#[test]
+fn samplers_map_to_independent_with_warnings() {
+    let s = load("Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 5\nOption \"seed\" 9\nWorldBegin");
+    assert_eq!(s.description.sampler.samples_per_pixel, 15);
+    assert_eq!(s.description.sampler.seed, 9);
+    assert!(s.warnings[0].ends_with("warning: sampler \"stratified\" is not implemented yet; using \"independent\""));
+    let s = load("Sampler \"independent\"\nWorldBegin");
+    assert!(s.warnings.iter().all(|w| !w.contains("sampler")));
+}
+
+#[test]
+fn attribute_directive_sets_shape_defaults() {
+    let s = load("WorldBegin\nAttributeBegin\nAttribute \"shape\" \"float radius\" 0.25\nShape \"sphere\"\nAttributeEnd\nShape \"sphere\"");
+    let radii: Vec<f32> = s
+        .description
+        .shapes
+        .iter()
+        .map(|s| match s.geometry {
+            GeometryDesc::Sphere { radius, .. } => radius,
+            _ => 0.0,
+        })
+        .collect();
+    assert_eq!(radii, vec![0.25, 1.0]);
+}
+
+#[test]
+fn coordinate_systems() {
+    let s = load(
+        "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nTranslate 1 0 0\nCoordinateSystem \"moved\"\n\
+         Identity\nCoordSysTransform \"camera\"\nShape \"sphere\"\nCoordSysTransform \"moved\"\nShape \"sphere\"",
+    );
+    assert!(close(
+        sphere_matrix(&s, 0).transform_point3(Vec3::ZERO),
+        Vec3::new(0.0, 0.0, -5.0)
+    ));
+    assert_eq!(sphere_matrix(&s, 1), Mat4::from_translation(Vec3::X));
+}
+
+#[test]
+fn unused_parameters_warn_with_their_location() {
+    let s = load("WorldBegin\nShape \"sphere\" \"float radius\" 2\n  \"float foo\" 1 \"float zmax\" 0.5");
+    assert!(
+        s.warnings.contains(
+            &"scene.pbrt:3:3: warning: parameter \"float foo\" of Shape \"sphere\" is not supported and was ignored"
+                .to_string()
+        ),
+        "{:?}",
+        s.warnings
+    );
+    assert!(s.warnings.iter().any(|w| w.starts_with("scene.pbrt:3:17: warning: parameter \"float zmax\" of Shape \"sphere\" is not supported yet; rendering the full sphere")), "{:?}", s.warnings);
+}
+
+#[test]
+fn include_is_relative_to_the_scene_directory_and_errors_name_the_included_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(
+        dir.path().join("sub/shapes.pbrt"),
+        "Translate 0 0 1\nShape \"sphere\"\nInclude \"sub/more.pbrt\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("sub/more.pbrt"),
+        "Shape \"sphere\" \"float radius\" 3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("main.pbrt"),
+        "WorldBegin\nAttributeBegin\nInclude \"sub/shapes.pbrt\"\nAttributeEnd\nShape \"sphere\"\n",
+    )
+    .unwrap();
+    let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
+    assert_eq!(s.description.shapes.len(), 3);
+    assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::Z));
+    assert_eq!(sphere_matrix(&s, 2), Mat4::IDENTITY);
+
+    std::fs::write(dir.path().join("sub/more.pbrt"), "\n  Shape \"cube\"\n").unwrap();
+    let err = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_err();
+    let included = dir.path().join("sub/more.pbrt");
+    assert_eq!(
+        err.to_string(),
+        format!("{}:2:3: unknown shape \"cube\"", included.display())
+    );
+
+    // load_str resolves includes against its base directory.
+    let s = load_str("WorldBegin\nImport \"sub/shapes.pbrt\"", "inline", &dir.path().join("")).unwrap_err();
+    assert!(s.to_string().contains("unknown shape \"cube\""));
+}
+
+#[test]
+fn include_falls_back_to_the_including_file_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(dir.path().join("sub/a.pbrt"), "Include \"b.pbrt\"\n").unwrap();
+    std::fs::write(dir.path().join("sub/b.pbrt"), "Shape \"sphere\"\n").unwrap();
+    std::fs::write(dir.path().join("main.pbrt"), "WorldBegin\nInclude \"sub/a.pbrt\"\n").unwrap();
+    let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
+    assert_eq!(s.description.shapes.len(), 1);
+}
+
+#[test]
+fn recursive_include_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.pbrt"), "Include \"a.pbrt\"\n").unwrap();
+    let err = mcrender_scene::pbrt::load_file(&dir.path().join("a.pbrt")).unwrap_err();
+    assert!(err.to_string().contains("nested too deeply"), "{err}");
+}
