@@ -107,7 +107,7 @@ fn load(args: &RenderArgs) -> Result<(LoadedScene, String)> {
 pub fn run(args: &RenderArgs) -> Result<()> {
     let (loaded, stem) = load(args)?;
     for w in &loaded.warnings {
-        eprintln!("mcrender: warning: {w}");
+        eprintln!("mcrender: {w}");
     }
     let mut desc = loaded.description;
     apply_overrides(&mut desc, args);

@@ -151,7 +151,12 @@ impl Triangle {
                         }
                         ns
                     }
-                    None => n,
+                    None => {
+                        if self.mesh.flip_normals {
+                            n = -n;
+                        }
+                        n
+                    }
                 }
             }
             None => {
