@@ -38,6 +38,10 @@ impl DiffuseBxdf {
     #[must_use]
     pub fn sample_f(&self, wo: Vec3, _uc: f32, u: Vec2) -> Option<BsdfSample> {
         let mut wi = sample_cosine_hemisphere(u);
+        if wi.z == 0.0 {
+            // On the rim: neither side's hemisphere, where f is zero.
+            return None;
+        }
         if wo.z < 0.0 {
             wi.z = -wi.z;
         }
