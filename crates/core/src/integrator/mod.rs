@@ -1,20 +1,27 @@
 //! Layer 5: integrators estimate the radiance arriving along a camera ray.
+//!
+//! The path tracer's direct-lighting estimator is chosen per render ([`DirectStrategy`]):
+//! hemisphere sampling (uniform or cosine), light sampling, BSDF sampling, or both combined
+//! by multiple importance sampling. Each is unbiased for every scene it accepts; the
+//! strategies that can only find light by hitting it refuse scenes with point-like lights.
 
-mod direct_light;
+mod direct;
 mod path;
+mod roulette;
 
-pub use direct_light::sample_direct_light;
+pub use direct::DirectEstimator;
 pub use path::PathIntegrator;
+pub use roulette::roulette;
 
 use crate::color::Rgb;
 use crate::math::Ray;
 use crate::sampling::Sampler;
-use crate::scene::Scene;
+use crate::scene::{DirectStrategy, IntegratorKind, Scene};
 
 /// Counters gathered while tracing, summed over the render.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TraceStats {
-    /// Closest-hit rays traced.
+    /// Closest-hit rays traced (camera, continuation and direct-lighting rays).
     pub rays: u64,
     /// Shadow rays traced.
     pub shadow_rays: u64,
@@ -27,20 +34,53 @@ impl std::ops::AddAssign for TraceStats {
     }
 }
 
+/// Why an integrator cannot render a scene.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum IntegratorError {
+    /// The direct-lighting strategy cannot see some of the scene's lights.
+    #[error(
+        "direct strategy \"{strategy}\" cannot find the scene's {count} point-like light(s) (point, spot, distant): \
+         they have no area for a sampled ray to hit, so they would render black; use \"light-area\" or \"mis\""
+    )]
+    InvisibleLights {
+        /// The strategy's name.
+        strategy: &'static str,
+        /// Number of such lights.
+        count: usize,
+    },
+}
+
 /// The closed set of integrators.
 #[derive(Clone, Debug)]
 pub enum Integrator {
-    /// Unidirectional path tracing with next-event estimation and MIS.
+    /// Unidirectional path tracing (direct lighting only is a path of depth one).
     Path(PathIntegrator),
 }
 
 impl Integrator {
-    /// Build from the scene's settings.
-    #[must_use]
-    pub fn from_scene(scene: &Scene) -> Self {
-        Self::Path(PathIntegrator {
-            max_depth: scene.integrator.max_depth,
-        })
+    /// Build from the scene's settings; fails when the chosen estimator cannot render the
+    /// scene without bias.
+    pub fn new(scene: &Scene) -> Result<Self, IntegratorError> {
+        let s = &scene.integrator;
+        let delta_lights = scene.lights.iter().filter(|l| l.is_delta()).count();
+        if s.direct.needs_emitter_hits() && delta_lights > 0 {
+            return Err(IntegratorError::InvisibleLights {
+                strategy: s.direct.name(),
+                count: delta_lights,
+            });
+        }
+        let max_depth = match s.kind {
+            IntegratorKind::Path => s.max_depth,
+            IntegratorKind::Direct => s.max_depth.min(1),
+        };
+        Ok(Self::Path(PathIntegrator {
+            max_depth,
+            direct: DirectEstimator {
+                strategy: s.direct,
+                samples: s.light_samples.max(1),
+            },
+            russian_roulette: s.russian_roulette,
+        }))
     }
 
     /// Radiance arriving at the camera along `ray`.
@@ -49,4 +89,10 @@ impl Integrator {
             Self::Path(p) => p.li(scene, ray, sampler, stats),
         }
     }
+}
+
+/// The strategy names, for messages.
+#[must_use]
+pub fn strategy_names() -> Vec<&'static str> {
+    DirectStrategy::ALL.iter().map(|d| d.name()).collect()
 }

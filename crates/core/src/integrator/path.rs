@@ -1,21 +1,25 @@
 //! Unidirectional path tracing (pbrt-v4 `PathIntegrator`): at every vertex, emission seen
-//! by the BSDF-sampled ray (MIS-weighted), next-event estimation, a BSDF-sampled
-//! continuation, and Russian roulette. Each block below is one step of the rendering
-//! equation `L_o = L_e + integral f L_i cos`.
+//! by the continuation ray (weighted as the direct-lighting strategy requires), a direct
+//! lighting estimate, a BSDF-sampled continuation, and Russian roulette. Each block below is
+//! one step of the rendering equation `L_o = L_e + integral f L_i cos`.
 
-use super::{sample_direct_light, TraceStats};
+use super::{roulette, DirectEstimator, TraceStats};
 use crate::color::Rgb;
 use crate::light::Light;
 use crate::math::Ray;
-use crate::sampling::{power_heuristic, Sampler};
-use crate::scene::Scene;
+use crate::sampling::Sampler;
+use crate::scene::{RussianRoulette, Scene};
 use crate::shape::Interaction;
 
 /// Path tracer settings.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathIntegrator {
     /// Maximum number of scattering events (0: emission only, 1: direct lighting).
     pub max_depth: u32,
+    /// How direct lighting is estimated at each vertex.
+    pub direct: DirectEstimator,
+    /// When paths end at random.
+    pub russian_roulette: RussianRoulette,
 }
 
 impl PathIntegrator {
@@ -24,7 +28,8 @@ impl PathIntegrator {
         let mut l = Rgb::BLACK;
         let mut beta = Rgb::WHITE;
         let mut depth = 0u32;
-        // The previous vertex and the BSDF pdf of the direction that left it, for MIS.
+        // The previous vertex and the BSDF pdf of the direction that left it, for weighting
+        // emission the continuation ray finds.
         let mut specular_bounce = true;
         let mut prev: Interaction = Interaction::point(ray.o);
         let mut prev_bsdf_pdf = 0.0f32;
@@ -38,7 +43,8 @@ impl PathIntegrator {
             let si = hit.si;
             let prim = &scene.primitives[hit.primitive as usize];
 
-            // Add emission, weighted against the light sampling that could have found it.
+            // Add emission: in full at the camera and after specular bounces, otherwise as the
+            // direct-lighting strategy weights it.
             if let Some(light_index) = prim.light {
                 if let Light::DiffuseArea(area) = &scene.lights[light_index as usize] {
                     let le = area.l(si.n(), si.wo);
@@ -47,7 +53,7 @@ impl PathIntegrator {
                             l += beta * le;
                         } else {
                             let p_light = scene.light_sampler.pmf(light_index as usize) * area.pdf_li(&prev, &si.intr);
-                            l += beta * le * power_heuristic(1.0, prev_bsdf_pdf, 1.0, p_light);
+                            l += beta * le * self.direct.continuation_weight(prev_bsdf_pdf, p_light);
                         }
                     }
                 }
@@ -60,9 +66,15 @@ impl PathIntegrator {
             }
             depth += 1;
 
-            // Sample direct illumination (next-event estimation).
-            if bsdf.flags().is_non_specular() {
-                l += beta * sample_direct_light(scene, &si, &bsdf, sampler, stats);
+            // Estimate direct lighting.
+            let non_specular = bsdf.flags().is_non_specular();
+            if non_specular {
+                l += beta * self.direct.estimate(scene, &si, &bsdf, sampler, stats);
+            }
+            // A continuation that ends at the depth limit only matters for the emission it
+            // may find.
+            if depth == self.max_depth && non_specular && !self.direct.uses_continuation() {
+                break;
             }
 
             // Sample the BSDF for the next direction; update the throughput.
@@ -77,19 +89,11 @@ impl PathIntegrator {
             prev = si.intr;
             ray = si.spawn_ray(bs.wi);
 
-            // Russian roulette: once the throughput is below 1, stop with probability
-            // 1 - max(beta) and reweight survivors, which keeps the estimate unbiased.
+            // Russian roulette.
             let u_rr = sampler.get_1d();
-            let max_beta = beta.max_component();
-            if max_beta < 1.0 && depth > 1 {
-                let q = (1.0 - max_beta).max(0.0);
-                if u_rr < q {
-                    break;
-                }
-                beta /= 1.0 - q;
-            }
-            if beta.is_black() {
-                break;
+            match roulette(self.russian_roulette, beta, depth, u_rr) {
+                Some(b) if !b.is_black() => beta = b,
+                _ => break,
             }
         }
         l

@@ -63,6 +63,9 @@ pub struct RenderOutput {
 /// Why a render could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    /// The integrator cannot render this scene as configured.
+    #[error(transparent)]
+    Integrator(#[from] crate::integrator::IntegratorError),
     /// The thread pool could not be created.
     #[error("cannot start {threads} render threads: {source}")]
     ThreadPool {
@@ -85,7 +88,7 @@ pub fn render(
         .num_threads(threads)
         .build()
         .map_err(|source| RenderError::ThreadPool { threads, source })?;
-    let integrator = Integrator::from_scene(scene);
+    let integrator = Integrator::new(scene)?;
     let (w, h) = (scene.film.width, scene.film.height);
     let tile_list = tiles(w, h, opts.tile_size.max(1));
     let total = u64::from(w) * u64::from(h);

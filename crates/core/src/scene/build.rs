@@ -65,6 +65,19 @@ impl SceneDescription {
         if self.sampler.samples_per_pixel == 0 {
             return Err(invalid("samples per pixel", "expected at least 1, found 0"));
         }
+        let int = &self.integrator;
+        if int.light_samples == 0 {
+            return Err(invalid("light samples", "expected at least 1, found 0"));
+        }
+        if let super::RussianRoulette::Threshold { threshold, probability } = int.russian_roulette {
+            check_non_negative("Russian roulette threshold", &[threshold])?;
+            if !(0.0..1.0).contains(&probability) {
+                return Err(invalid(
+                    "Russian roulette probability",
+                    format!("expected [0, 1), found {probability}"),
+                ));
+            }
+        }
         let c = &self.camera;
         check_finite("camera transform", &c.world_from_camera.m.to_cols_array())?;
         if !(c.fov_degrees > 0.0 && c.fov_degrees < 180.0) {

@@ -136,16 +136,106 @@ impl Default for SamplerDesc {
     }
 }
 
-/// Integrator settings (pbrt `Integrator "path"`).
+/// Which light transport algorithm.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Paths of any length (pbrt `path`).
+    #[default]
+    Path,
+    /// Emission plus direct lighting at the first hit only (`Integrator "direct"`).
+    Direct,
+}
+
+/// How the direct lighting at each path vertex is estimated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DirectStrategy {
+    /// Directions uniform over the hemisphere of the surface, p = 1 / (2 pi).
+    UniformHemisphere,
+    /// Directions cosine-distributed over the hemisphere, p = cos(theta) / pi.
+    CosineHemisphere,
+    /// Points on the lights (uniform by area for area lights), converted to solid angle.
+    LightArea,
+    /// Directions sampled from the BSDF.
+    Bsdf,
+    /// Light and BSDF sampling combined by the power heuristic.
+    #[default]
+    Mis,
+}
+
+impl DirectStrategy {
+    /// All strategies, in the order of the lecture.
+    pub const ALL: [Self; 5] = [
+        Self::UniformHemisphere,
+        Self::CosineHemisphere,
+        Self::LightArea,
+        Self::Bsdf,
+        Self::Mis,
+    ];
+
+    /// The name used on the command line and in scene files.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::UniformHemisphere => "uniform-hemisphere",
+            Self::CosineHemisphere => "cosine-hemisphere",
+            Self::LightArea => "light-area",
+            Self::Bsdf => "bsdf",
+            Self::Mis => "mis",
+        }
+    }
+
+    /// True when the strategy finds light only by tracing rays that hit emitters, so it
+    /// cannot see lights without area (point, spot, distant).
+    #[must_use]
+    pub const fn needs_emitter_hits(self) -> bool {
+        matches!(self, Self::UniformHemisphere | Self::CosineHemisphere | Self::Bsdf)
+    }
+}
+
+/// When to end paths at random (Russian roulette). Survivors are divided by their
+/// survival probability, so the estimate stays unbiased.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum RussianRoulette {
+    /// Never: paths end at the depth limit or when they escape.
+    Off,
+    /// pbrt-v4's rule: from the second bounce on, once the largest component of the path
+    /// throughput `beta` is below 1, stop with probability `1 - max(beta)`.
+    #[default]
+    Throughput,
+    /// The lecture's rule: when the luminance of the throughput is below `threshold`, stop
+    /// with probability `probability`.
+    Threshold {
+        /// Throughput luminance below which roulette is played.
+        threshold: f32,
+        /// Probability of stopping, in [0, 1).
+        probability: f32,
+    },
+}
+
+/// Integrator settings (pbrt `Integrator "path"`, plus mcrender's estimator choices).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IntegratorDesc {
+    /// Path or direct lighting only.
+    pub kind: IntegratorKind,
     /// Maximum number of scattering events: 0 = emission only, 1 = direct lighting, ...
     pub max_depth: u32,
+    /// Direct-lighting estimator.
+    pub direct: DirectStrategy,
+    /// Direct-lighting samples per path vertex.
+    pub light_samples: u32,
+    /// Russian roulette.
+    pub russian_roulette: RussianRoulette,
 }
 
 impl Default for IntegratorDesc {
     fn default() -> Self {
-        Self { max_depth: 5 }
+        Self {
+            kind: IntegratorKind::Path,
+            max_depth: 5,
+            direct: DirectStrategy::Mis,
+            light_samples: 1,
+            russian_roulette: RussianRoulette::Throughput,
+        }
     }
 }
 

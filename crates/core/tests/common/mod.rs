@@ -19,7 +19,7 @@ pub fn empty_scene() -> SceneDescription {
             samples_per_pixel: 64,
             ..Default::default()
         },
-        integrator: IntegratorDesc { max_depth: 5 },
+        integrator: IntegratorDesc::default(),
         materials: vec![MaterialDesc::Diffuse {
             reflectance: Rgb::BLACK,
         }],
@@ -157,4 +157,34 @@ pub fn assert_mean_radiance(d: &SceneDescription, expected: Rgb) {
         eprintln!("channel {c}: mean {mean:.6}, expected {e:.6}, standard error {se:.2e}");
     }
     assert_eq!(out.stats.nonfinite_samples, 0, "non-finite samples");
+}
+
+/// Image mean per channel and its standard error (from the per-pixel variances).
+pub fn mean_and_standard_error(out: &RenderOutput) -> ([f64; 3], [f64; 3]) {
+    let n = out.film.pixels().len() as f64;
+    let mut mean = [0.0; 3];
+    let mut se = [0.0; 3];
+    for c in 0..3 {
+        mean[c] = out.film.pixels().iter().map(|p| f64::from(p.mean()[c])).sum::<f64>() / n;
+        let var: f64 = out
+            .film
+            .pixels()
+            .iter()
+            .map(|p| f64::from(p.variance_of_mean()[c]))
+            .sum::<f64>()
+            / (n * n);
+        se[c] = var.sqrt();
+    }
+    (mean, se)
+}
+
+/// Average over pixels of the variance of the pixel estimate (luminance).
+pub fn mean_pixel_variance(out: &RenderOutput) -> f64 {
+    let n = out.film.pixels().len() as f64;
+    out.film
+        .pixels()
+        .iter()
+        .map(|p| f64::from(p.variance_of_mean().luminance()))
+        .sum::<f64>()
+        / n
 }

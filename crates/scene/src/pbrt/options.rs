@@ -3,7 +3,9 @@
 
 use glam::Vec2;
 use mcrender_core::math::Transform;
-use mcrender_core::scene::{CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, SamplerKind};
+use mcrender_core::scene::{
+    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, RussianRoulette, SamplerKind,
+};
 
 use super::builder::SceneBuilder;
 use super::params::ParamSet;
@@ -216,8 +218,12 @@ impl SceneBuilder {
     /// `Integrator "path"`; other pbrt integrators fall back to it with a warning.
     pub fn integrator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Integrator", loc)?;
+        let integrator_kind = match kind {
+            "direct" | "directlighting" => IntegratorKind::Direct,
+            _ => IntegratorKind::Path,
+        };
         match kind {
-            "path" => {}
+            "path" | "direct" | "directlighting" => {}
             "volpath" => self.warn(
                 loc,
                 "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
@@ -235,8 +241,30 @@ impl SceneBuilder {
         if max_depth < 0 {
             return Err(param_error(params, "maxdepth", "must not be negative"));
         }
+        let direct = match params.string("direct")? {
+            None => DirectStrategy::Mis,
+            Some((name, loc)) => DirectStrategy::ALL
+                .into_iter()
+                .find(|d| d.name() == name)
+                .ok_or_else(|| {
+                    let names: Vec<_> = DirectStrategy::ALL.iter().map(|d| d.name()).collect();
+                    SceneError::invalid(
+                        &loc,
+                        format!("expected a direct strategy ({}), found \"{name}\"", names.join(", ")),
+                    )
+                })?,
+        };
+        let light_samples = params.int("lightsamples", 1)?;
+        if light_samples < 1 {
+            return Err(param_error(params, "lightsamples", "must be at least 1"));
+        }
+        let russian_roulette = russian_roulette(params)?;
         self.integrator = IntegratorDesc {
+            kind: integrator_kind,
             max_depth: max_depth as u32,
+            direct,
+            light_samples: light_samples as u32,
+            russian_roulette,
         };
         self.warn_unused(params);
         Ok(())
@@ -335,5 +363,39 @@ fn resolution(params: &ParamSet, name: &str, default: i32) -> Result<i32, SceneE
             name,
             &format!("must be between 1 and {MAX_RESOLUTION}, found {v}"),
         ))
+    }
+}
+
+/// mcrender's Russian roulette parameters of `Integrator`: `"string russianroulette"`
+/// (`"off"`, `"throughput"` = pbrt's rule, the default, or `"threshold"`), and for the
+/// lecture's rule `"float rrthreshold"` and `"float rrprobability"` (giving either selects it).
+fn russian_roulette(params: &ParamSet) -> Result<RussianRoulette, SceneError> {
+    let threshold = params.get("rrthreshold").is_some() || params.get("rrprobability").is_some();
+    let mode = params.string("russianroulette")?;
+    let mode_name = mode.as_ref().map(|(m, _)| m.as_str());
+    match (mode_name, threshold) {
+        (Some("off"), false) => Ok(RussianRoulette::Off),
+        (None | Some("throughput"), false) => Ok(RussianRoulette::Throughput),
+        (None | Some("threshold"), _) => {
+            let t = params.float("rrthreshold", 1.0)?;
+            let q = params.float("rrprobability", 0.5)?;
+            if !(t.is_finite() && t >= 0.0) {
+                return Err(param_error(params, "rrthreshold", "must be a non-negative number"));
+            }
+            if !(0.0..1.0).contains(&q) {
+                return Err(param_error(params, "rrprobability", "must be in [0, 1)"));
+            }
+            Ok(RussianRoulette::Threshold {
+                threshold: t,
+                probability: q,
+            })
+        }
+        (Some(other), _) => {
+            let loc = &mode.as_ref().expect("mode given").1;
+            Err(SceneError::invalid(
+                loc,
+                format!("expected russianroulette \"off\", \"throughput\" or \"threshold\" (with rrthreshold/rrprobability), found \"{other}\""),
+            ))
+        }
     }
 }

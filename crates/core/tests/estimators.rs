@@ -1,0 +1,228 @@
+//! The estimator lab's guarantees: every direct-lighting technique, with any number of
+//! light samples and any Russian roulette setting, is unbiased (agrees with closed forms
+//! within 4 standard errors of its own samples), and their variances are ordered where
+//! theory fixes the order.
+
+mod common;
+
+use common::*;
+use mcrender_core::color::Rgb;
+use mcrender_core::math::{Vec3, PI};
+use mcrender_core::render::{render, RenderError, RenderOptions};
+use mcrender_core::scene::{AreaLightDesc, DirectStrategy, LightDesc, RussianRoulette, Scene, SceneDescription};
+
+fn with(d: &SceneDescription, strategy: DirectStrategy, light_samples: u32) -> SceneDescription {
+    let mut d = d.clone();
+    d.integrator.direct = strategy;
+    d.integrator.light_samples = light_samples;
+    d
+}
+
+fn check_all_strategies(d: &SceneDescription, expected: Rgb, label: &str) {
+    for strategy in DirectStrategy::ALL {
+        for n in [1, 3] {
+            let out = render_desc(&with(d, strategy, n));
+            let (mean, se) = mean_and_standard_error(&out);
+            for c in 0..3 {
+                let e = f64::from(expected[c]);
+                assert!(
+                    (mean[c] - e).abs() <= 4.0 * se[c] + 1e-6 * e,
+                    "{label}, {} x{n}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
+                    strategy.name(),
+                    mean[c],
+                    se[c]
+                );
+            }
+        }
+    }
+}
+
+fn uniform_sky() -> SceneDescription {
+    let mut d = inside_sphere_scene(
+        50.0,
+        Rgb::BLACK,
+        Some(AreaLightDesc {
+            radiance: Rgb::splat(1.5),
+            two_sided: false,
+        }),
+        true,
+    );
+    add_receiver(&mut d, 0.8);
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 1024;
+    d
+}
+
+#[test]
+fn every_technique_is_unbiased_under_a_uniform_sky() {
+    check_all_strategies(&uniform_sky(), Rgb::splat(0.8 * 1.5), "uniform sky");
+}
+
+#[test]
+fn every_technique_is_unbiased_under_a_sphere_light() {
+    let (r, dist, l, rho) = (0.5f32, 1.2f32, 2.0f32, 0.9f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 2048;
+    check_all_strategies(&d, Rgb::splat(rho * l * (r / dist) * (r / dist)), "sphere light");
+}
+
+#[test]
+fn every_technique_is_unbiased_under_a_square_light() {
+    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 2048;
+    let corner = |a: f32, b: f32, c: f32| {
+        let (x, y) = (a / c, b / c);
+        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
+    };
+    let e = PI * l * 4.0 * corner(s, s, h);
+    check_all_strategies(&d, Rgb::splat(rho / PI * e), "square light");
+}
+
+/// With interreflection (all bounces) every technique still converges to L_e / (1 - a).
+#[test]
+fn every_technique_is_unbiased_with_all_bounces() {
+    let mut d = inside_sphere_scene(
+        2.0,
+        Rgb::splat(0.5),
+        Some(AreaLightDesc {
+            radiance: Rgb::splat(1.0),
+            two_sided: false,
+        }),
+        true,
+    );
+    d.integrator.max_depth = u32::MAX;
+    d.sampler.samples_per_pixel = 512;
+    check_all_strategies(&d, Rgb::splat(2.0), "closed emissive sphere");
+}
+
+#[test]
+fn cosine_sampling_beats_uniform_under_a_uniform_sky() {
+    let d = uniform_sky();
+    let uniform = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::UniformHemisphere, 1)));
+    let cosine = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::CosineHemisphere, 1)));
+    eprintln!("variance: uniform {uniform:.3e}, cosine {cosine:.3e}");
+    assert!(cosine < 0.5 * uniform, "cosine {cosine:.3e} vs uniform {uniform:.3e}");
+}
+
+#[test]
+fn more_light_samples_lower_the_variance() {
+    let d = uniform_sky();
+    let one = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::LightArea, 1)));
+    let four = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::LightArea, 4)));
+    eprintln!("variance: 1 light sample {one:.3e}, 4 light samples {four:.3e}");
+    // Direct lighting only: four samples per pixel sample quarter the variance.
+    assert!(
+        four < 0.3 * one && four > 0.2 * one,
+        "1 sample {one:.3e}, 4 samples {four:.3e}"
+    );
+}
+
+#[test]
+fn hemisphere_and_bsdf_sampling_refuse_point_lights() {
+    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
+    d.lights.push(LightDesc::Point {
+        position: Vec3::ZERO,
+        intensity: Rgb::splat(PI),
+    });
+    for strategy in [
+        DirectStrategy::UniformHemisphere,
+        DirectStrategy::CosineHemisphere,
+        DirectStrategy::Bsdf,
+    ] {
+        let scene = Scene::build(&with(&d, strategy, 1)).unwrap();
+        match render(&scene, &RenderOptions::default(), &|_, _| {}) {
+            Err(RenderError::Integrator(e)) => assert!(e.to_string().contains("point"), "{e}"),
+            other => panic!(
+                "{}: expected a refusal, got {:?}",
+                strategy.name(),
+                other.map(|o| o.stats)
+            ),
+        }
+    }
+    for strategy in [DirectStrategy::LightArea, DirectStrategy::Mis] {
+        let mut d = with(&d, strategy, 2);
+        d.integrator.max_depth = u32::MAX;
+        d.sampler.samples_per_pixel = 1024;
+        let (mean, se) = mean_and_standard_error(&render_desc(&d));
+        assert!(
+            (mean[0] - 1.0).abs() < 4.0 * se[0],
+            "{}: {} +- {}",
+            strategy.name(),
+            mean[0],
+            se[0]
+        );
+    }
+}
+
+/// The lecture's Russian roulette settings leave the mean where it was (within noise) and
+/// cost fewer rays the more they terminate. Cost is counted in rays, not seconds, so the test
+/// does not depend on the machine.
+#[test]
+fn russian_roulette_is_unbiased_and_saves_work() {
+    let mut d = inside_sphere_scene(
+        2.0,
+        Rgb::splat(0.7),
+        Some(AreaLightDesc {
+            radiance: Rgb::splat(1.0),
+            two_sided: false,
+        }),
+        true,
+    );
+    d.integrator.max_depth = 64;
+    d.sampler.samples_per_pixel = 1024;
+    // Without roulette the truncated geometric series: sum_{k=0}^{64} 0.7^k.
+    let expected = (1.0 - 0.7f64.powi(65)) / (1.0 - 0.7);
+    let settings = [
+        RussianRoulette::Off,
+        RussianRoulette::Threshold {
+            threshold: 0.25,
+            probability: 0.5,
+        },
+        RussianRoulette::Threshold {
+            threshold: 0.5,
+            probability: 0.5,
+        },
+        RussianRoulette::Threshold {
+            threshold: 0.125,
+            probability: 0.9,
+        },
+        RussianRoulette::Threshold {
+            threshold: 1.0,
+            probability: 0.9,
+        },
+        RussianRoulette::Throughput,
+    ];
+    let mut rays = Vec::new();
+    for rr in settings {
+        let mut d = d.clone();
+        d.integrator.russian_roulette = rr;
+        let out = render_desc(&d);
+        let (mean, se) = mean_and_standard_error(&out);
+        eprintln!(
+            "{rr:?}: mean {:.5} +- {:.5}, rays {}",
+            mean[0], se[0], out.stats.trace.rays
+        );
+        assert!(
+            (mean[0] - expected).abs() <= 4.0 * se[0] + 1e-5 * expected,
+            "{rr:?}: mean {} vs {expected}",
+            mean[0]
+        );
+        rays.push(out.stats.trace.rays);
+    }
+    // Off traces every path to the limit; more termination, fewer rays.
+    assert!(
+        rays[1] < rays[0] && rays[2] < rays[1] && rays[4] < rays[3] && rays[3] < rays[0],
+        "{rays:?}"
+    );
+}
