@@ -4,7 +4,10 @@
 //! unwritable output), with a message on stderr naming what is wrong.
 
 mod builtin;
+mod lab;
 mod render_cmd;
+mod scene_args;
+mod study;
 
 use std::process::ExitCode;
 
@@ -22,12 +25,21 @@ struct Cli {
 enum Command {
     /// Render a pbrt-v4 scene file (the built-in Cornell box when SCENE is omitted).
     Render(render_cmd::RenderArgs),
+    /// Compare direct-lighting techniques: variance, time, efficiency, contact sheet, convergence plot.
+    Compare(study::compare::CompareArgs),
+    /// Render the scene at several maximum depths, with a labelled contact sheet.
+    Bounces(study::bounces::BouncesArgs),
+    /// Compare Russian roulette settings: time, mean radiance and error against a reference.
+    RrStudy(study::rr_study::RrStudyArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Some(Command::Render(args)) => render_cmd::run(&args),
+        Some(Command::Compare(args)) => study::compare::run(&args),
+        Some(Command::Bounces(args)) => study::bounces::run(&args),
+        Some(Command::RrStudy(args)) => study::rr_study::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
     match result {

@@ -8,36 +8,22 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
-use mcrender_core::scene::{Scene, SceneDescription};
+use mcrender_core::scene::Scene;
 use mcrender_scene::image_io::{write_image, ImageRgb};
-use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
 
 use crate::builtin;
+use crate::scene_args::SceneArgs;
 
 /// Options of `mcrender render`; flags override what the scene file says.
 #[derive(Args, Debug, Default)]
 pub struct RenderArgs {
-    /// pbrt-v4 scene file; the built-in Cornell box when omitted.
-    pub scene: Option<PathBuf>,
+    /// The scene and overrides.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Output image: .png (8-bit sRGB) or .exr (linear float). Default: the file's Film
     /// "filename", else the scene's name with .png.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Samples per pixel.
-    #[arg(long)]
-    pub spp: Option<u32>,
-    /// Image size as WIDTHxHEIGHT, e.g. 640x480.
-    #[arg(long, value_parser = parse_resolution)]
-    pub resolution: Option<(u32, u32)>,
-    /// Maximum path depth (0 = emission only, 1 = direct lighting, ...).
-    #[arg(long)]
-    pub max_depth: Option<u32>,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Random seed.
-    #[arg(long)]
-    pub seed: Option<u64>,
     /// Also write each pixel's estimated variance (of its mean) to this EXR file.
     #[arg(long)]
     pub variance_output: Option<PathBuf>,
@@ -50,67 +36,22 @@ impl RenderArgs {
     /// What `mcrender` with no arguments does: a quick render of the built-in scene.
     pub fn builtin_default() -> Self {
         Self {
+            scene: SceneArgs {
+                spp: Some(builtin::DEFAULT_SPP),
+                resolution: Some(builtin::DEFAULT_RESOLUTION),
+                ..Default::default()
+            },
             output: Some(PathBuf::from(builtin::DEFAULT_OUTPUT)),
-            spp: Some(builtin::DEFAULT_SPP),
-            resolution: Some(builtin::DEFAULT_RESOLUTION),
             ..Default::default()
-        }
-    }
-}
-
-fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""))
-    };
-    Ok((parse(w)?, parse(h)?))
-}
-
-/// Apply command-line overrides to the description.
-fn apply_overrides(desc: &mut SceneDescription, args: &RenderArgs) {
-    if let Some(spp) = args.spp {
-        desc.sampler.samples_per_pixel = spp;
-    }
-    if let Some((w, h)) = args.resolution {
-        desc.film.width = w;
-        desc.film.height = h;
-    }
-    if let Some(d) = args.max_depth {
-        desc.integrator.max_depth = d;
-    }
-    if let Some(s) = args.seed {
-        desc.sampler.seed = s;
-    }
-}
-
-fn load(args: &RenderArgs) -> Result<(LoadedScene, String)> {
-    match &args.scene {
-        Some(path) => {
-            let loaded = load_file(path).map_err(anyhow::Error::new)?;
-            let stem = path
-                .file_stem()
-                .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
-            Ok((loaded, stem))
-        }
-        None => {
-            let loaded = load_str(builtin::SOURCE, builtin::NAME, Path::new(".")).map_err(anyhow::Error::new)?;
-            Ok((loaded, "cornell-box".to_string()))
         }
     }
 }
 
 /// Run the command.
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let (loaded, stem) = load(args)?;
-    for w in &loaded.warnings {
-        eprintln!("mcrender: {w}");
-    }
+    let (loaded, stem) = args.scene.load()?;
     let mut desc = loaded.description;
-    apply_overrides(&mut desc, args);
+    args.scene.apply(&mut desc)?;
     let output = args
         .output
         .clone()
@@ -125,7 +66,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
     let bar = progress_bar(u64::from(w) * u64::from(h), args.quiet);
     let opts = RenderOptions {
-        threads: args.threads,
+        threads: args.scene.threads,
         ..Default::default()
     };
     let out = render(&scene, &opts, &|done, _| bar.set_position(done))?;
@@ -152,7 +93,7 @@ fn check_extension(path: &Path, allowed: &[&str]) -> Result<()> {
     Ok(())
 }
 
-fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
+pub fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
     if quiet {
         return ProgressBar::hidden();
     }

@@ -226,3 +226,23 @@ fn russian_roulette_is_unbiased_and_saves_work() {
         "{rays:?}"
     );
 }
+
+/// Rendering samples [0, 3) and [3, 8) and merging gives the same estimate as rendering
+/// [0, 8) at once (up to the order of floating-point additions).
+#[test]
+fn sample_waves_merge_into_the_whole_render() {
+    use mcrender_core::render::render_samples;
+    let mut d = uniform_sky();
+    d.sampler.samples_per_pixel = 8;
+    let scene = Scene::build(&d).unwrap();
+    let opts = RenderOptions::default();
+    let whole = render_samples(&scene, &opts, 0..8, &|_, _| {}).unwrap();
+    let mut parts = render_samples(&scene, &opts, 0..3, &|_, _| {}).unwrap();
+    parts
+        .film
+        .merge(&render_samples(&scene, &opts, 3..8, &|_, _| {}).unwrap().film);
+    for (a, b) in whole.film.pixels().iter().zip(parts.film.pixels()) {
+        assert_eq!(a.count, b.count);
+        assert!((a.mean() - b.mean()).max_component().abs() < 1e-5);
+    }
+}

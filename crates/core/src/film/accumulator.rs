@@ -122,6 +122,21 @@ impl Film {
         &self.pixels
     }
 
+    /// Add another film's samples of the same image (e.g. a later wave of samples).
+    ///
+    /// # Panics
+    /// When the sizes differ.
+    pub fn merge(&mut self, other: &Self) {
+        assert_eq!(
+            (self.width, self.height),
+            (other.width, other.height),
+            "films of different sizes"
+        );
+        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
+            a.merge(b);
+        }
+    }
+
     /// The estimate of every pixel.
     #[must_use]
     pub fn mean_image(&self) -> Vec<Rgb> {

@@ -83,6 +83,18 @@ pub fn render(
     opts: &RenderOptions,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<RenderOutput, RenderError> {
+    render_samples(scene, opts, 0..scene.sampler.samples_per_pixel, progress)
+}
+
+/// Render only the samples with indices in `samples` of every pixel. Films of disjoint
+/// ranges merge ([`Film::merge`]) into exactly the film of their union, so a render can
+/// grow in waves (convergence studies, progressive output) and stay deterministic.
+pub fn render_samples(
+    scene: &Scene,
+    opts: &RenderOptions,
+    samples: std::ops::Range<u32>,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<RenderOutput, RenderError> {
     let threads = opts.threads.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -99,7 +111,7 @@ pub fn render(
         tile_list
             .par_iter()
             .map(|tile| {
-                let (pixels, trace, nonfinite) = render_tile(scene, &integrator, tile);
+                let (pixels, trace, nonfinite) = render_tile(scene, &integrator, tile, samples.clone());
                 let n = done.fetch_add(tile.pixel_count(), Ordering::Relaxed) + tile.pixel_count();
                 progress(n, total);
                 (*tile, pixels, trace, nonfinite)
@@ -121,14 +133,18 @@ pub fn render(
         stats.nonfinite_samples += nonfinite;
     }
     stats.elapsed = start.elapsed();
-    stats.paths = total * u64::from(scene.sampler.samples_per_pixel);
+    stats.paths = total * u64::from(samples.end.saturating_sub(samples.start));
     Ok(RenderOutput { film, stats })
 }
 
-/// Render all samples of every pixel in a tile, in tile order.
-fn render_tile(scene: &Scene, integrator: &Integrator, tile: &Tile) -> (Vec<PixelStats>, TraceStats, u64) {
+/// Render the given samples of every pixel in a tile, in tile order.
+fn render_tile(
+    scene: &Scene,
+    integrator: &Integrator,
+    tile: &Tile,
+    samples: std::ops::Range<u32>,
+) -> (Vec<PixelStats>, TraceStats, u64) {
     let mut sampler = Sampler::new(&scene.sampler);
-    let spp = sampler.samples_per_pixel();
     let mut trace = TraceStats::default();
     let mut nonfinite = 0;
     let mut out = Vec::with_capacity(tile.pixel_count() as usize);
@@ -136,7 +152,7 @@ fn render_tile(scene: &Scene, integrator: &Integrator, tile: &Tile) -> (Vec<Pixe
         let (x, y) = tile.pixel_at(i);
         let pixel = UVec2::new(x, y);
         let mut acc = PixelStats::default();
-        for s in 0..spp {
+        for s in samples.clone() {
             sampler.start_pixel_sample(pixel, s);
             // Offset drawn from the filter: the sample lands at centre + offset with a
             // weight of about one, so nothing is splatted into neighbouring pixels.

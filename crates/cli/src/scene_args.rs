@@ -1,0 +1,161 @@
+//! Arguments shared by every command that renders: the scene, overrides of the file's
+//! settings, and the estimator choices of the lab.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Result};
+use clap::{Args, ValueEnum};
+use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SceneDescription};
+use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
+
+use crate::builtin;
+
+/// Which integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorChoice {
+    /// Paths of any length.
+    Path,
+    /// Emission and direct lighting at the first hit only.
+    Direct,
+}
+
+/// Russian roulette presets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum RouletteChoice {
+    /// No Russian roulette.
+    Off,
+    /// pbrt-v4's rule (the default): stop with probability 1 - max(throughput) after the second bounce.
+    Throughput,
+}
+
+/// The scene and what to override in it.
+#[derive(Args, Debug, Default, Clone)]
+pub struct SceneArgs {
+    /// pbrt-v4 scene file; the built-in Cornell box when omitted.
+    pub scene: Option<PathBuf>,
+    /// Samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Image size as WIDTHxHEIGHT, e.g. 640x480.
+    #[arg(long, value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Maximum path depth (0 = emission only, 1 = direct lighting, 2 = one bounce, ...).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Random seed.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Integrator.
+    #[arg(long, value_enum)]
+    pub integrator: Option<IntegratorChoice>,
+    /// Direct-lighting estimator: uniform-hemisphere, cosine-hemisphere, light-area, bsdf or mis.
+    #[arg(long, value_parser = parse_strategy)]
+    pub direct: Option<DirectStrategy>,
+    /// Direct-lighting samples per path vertex.
+    #[arg(long)]
+    pub light_samples: Option<u32>,
+    /// Russian roulette preset (see --rr-threshold and --rr-prob for the lecture's rule).
+    #[arg(long, value_enum, conflicts_with_all = ["rr_threshold", "rr_prob"])]
+    pub rr: Option<RouletteChoice>,
+    /// Lecture's Russian roulette: play when the throughput's luminance is below this (default 1).
+    #[arg(long)]
+    pub rr_threshold: Option<f32>,
+    /// Lecture's Russian roulette: probability of stopping when played (default 0.5).
+    #[arg(long)]
+    pub rr_prob: Option<f32>,
+}
+
+/// Parse `WIDTHxHEIGHT`.
+pub fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+/// Parse a direct-lighting strategy name.
+pub fn parse_strategy(s: &str) -> Result<DirectStrategy, String> {
+    DirectStrategy::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
+        let names: Vec<_> = DirectStrategy::ALL.iter().map(|d| d.name()).collect();
+        format!("expected one of {}, found \"{s}\"", names.join(", "))
+    })
+}
+
+impl SceneArgs {
+    /// Load the scene (or the built-in one); returns it with a short name for output files.
+    pub fn load(&self) -> Result<(LoadedScene, String)> {
+        let (loaded, stem) = match &self.scene {
+            Some(path) => {
+                let loaded = load_file(path).map_err(anyhow::Error::new)?;
+                let stem = path
+                    .file_stem()
+                    .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
+                (loaded, stem)
+            }
+            None => (
+                load_str(builtin::SOURCE, builtin::NAME, Path::new(".")).map_err(anyhow::Error::new)?,
+                "cornell-box".into(),
+            ),
+        };
+        for w in &loaded.warnings {
+            eprintln!("mcrender: {w}");
+        }
+        Ok((loaded, stem))
+    }
+
+    /// Apply the overrides to a description.
+    pub fn apply(&self, desc: &mut SceneDescription) -> Result<()> {
+        if let Some(spp) = self.spp {
+            desc.sampler.samples_per_pixel = spp;
+        }
+        if let Some((w, h)) = self.resolution {
+            desc.film.width = w;
+            desc.film.height = h;
+        }
+        if let Some(d) = self.max_depth {
+            desc.integrator.max_depth = d;
+        }
+        if let Some(s) = self.seed {
+            desc.sampler.seed = s;
+        }
+        if let Some(i) = self.integrator {
+            desc.integrator.kind = match i {
+                IntegratorChoice::Path => IntegratorKind::Path,
+                IntegratorChoice::Direct => IntegratorKind::Direct,
+            };
+        }
+        if let Some(d) = self.direct {
+            desc.integrator.direct = d;
+        }
+        if let Some(n) = self.light_samples {
+            if n == 0 {
+                bail!("--light-samples: expected at least 1, found 0");
+            }
+            desc.integrator.light_samples = n;
+        }
+        match (self.rr, self.rr_threshold, self.rr_prob) {
+            (Some(RouletteChoice::Off), ..) => desc.integrator.russian_roulette = RussianRoulette::Off,
+            (Some(RouletteChoice::Throughput), ..) => desc.integrator.russian_roulette = RussianRoulette::Throughput,
+            (None, None, None) => {}
+            (None, t, q) => {
+                let (threshold, probability) = (t.unwrap_or(1.0), q.unwrap_or(0.5));
+                if !(threshold.is_finite() && threshold >= 0.0) {
+                    bail!("--rr-threshold: expected a non-negative number, found {threshold}");
+                }
+                if !(0.0..1.0).contains(&probability) {
+                    bail!("--rr-prob: expected a probability in [0, 1), found {probability}");
+                }
+                desc.integrator.russian_roulette = RussianRoulette::Threshold { threshold, probability };
+            }
+        }
+        Ok(())
+    }
+}
