@@ -25,12 +25,7 @@ fn shapes_of(tris: &[[Vec3; 3]]) -> Vec<Shape> {
         ..Default::default()
     });
     (0..tris.len() as u32)
-        .map(|index| {
-            Shape::Triangle(Triangle {
-                mesh: mesh.clone(),
-                index,
-            })
-        })
+        .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
         .collect()
 }
 
@@ -96,12 +91,7 @@ fn shared_edges_leave_no_gaps() {
         ..Default::default()
     });
     let shapes: Vec<Shape> = (0..n)
-        .map(|index| {
-            Shape::Triangle(Triangle {
-                mesh: mesh.clone(),
-                index,
-            })
-        })
+        .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
         .collect();
     for p in positions.iter().skip(1).take(n as usize) {
         let target = *p * 0.5; // on the shared edge from the centre

@@ -192,7 +192,8 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let inv_d = ray.d.recip();
+        let inv_d = glam::Vec3A::from(ray.d.recip());
+        let origin = glam::Vec3A::from(ray.o);
         let dir_is_neg = [inv_d.x < 0.0, inv_d.y < 0.0, inv_d.z < 0.0];
         let mut best = None;
         let mut stack = [0u32; 64];
@@ -200,7 +201,7 @@ impl Bvh {
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray.o, inv_d, t_max) {
+            if node.bounds.hit(origin, inv_d, t_max) {
                 if node.prim_count > 0 {
                     let start = node.offset as usize;
                     for &prim in &self.prim_indices[start..start + node.prim_count as usize] {
@@ -237,13 +238,14 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let inv_d = ray.d.recip();
+        let inv_d = glam::Vec3A::from(ray.d.recip());
+        let origin = glam::Vec3A::from(ray.o);
         let mut stack = [0u32; 64];
         let mut sp = 0;
         let mut current = 0usize;
         loop {
             let node = &self.nodes[current];
-            if node.bounds.hit(ray.o, inv_d, t_max) {
+            if node.bounds.hit(origin, inv_d, t_max) {
                 if node.prim_count > 0 {
                     let start = node.offset as usize;
                     for &prim in &self.prim_indices[start..start + node.prim_count as usize] {

@@ -43,7 +43,7 @@ fn triangle_light_sampling_matches_its_solid_angle_pdf() {
         ..Default::default()
     });
     let light = DiffuseAreaLight {
-        shape: Shape::Triangle(Triangle { mesh, index: 0 }),
+        shape: Shape::Triangle(Triangle::new(mesh, 0)),
         radiance: Rgb::WHITE,
         two_sided: true,
     };

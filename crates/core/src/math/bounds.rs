@@ -130,9 +130,10 @@ impl Bounds3 {
     /// cannot make a ray miss a box it touches (pbrt-v4 `Bounds3::IntersectP`).
     #[inline]
     #[must_use]
-    pub fn hit(&self, o: Vec3, inv_d: Vec3, t_max: f32) -> bool {
-        let t0 = (self.min - o) * inv_d;
-        let t1 = (self.max - o) * inv_d;
+    pub fn hit(&self, o: glam::Vec3A, inv_d: glam::Vec3A, t_max: f32) -> bool {
+        // SIMD lanes via Vec3A: four-wide arithmetic on the three slabs at once.
+        let t0 = (glam::Vec3A::from(self.min) - o) * inv_d;
+        let t1 = (glam::Vec3A::from(self.max) - o) * inv_d;
         let t_near = t0.min(t1);
         let t_far = t0.max(t1) * (1.0 + 2.0 * super::gamma(3));
         let t_enter = t_near.max_element().max(0.0);

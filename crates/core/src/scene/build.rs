@@ -221,12 +221,7 @@ impl Scene {
                         flip_normals: s.flip_normals,
                     });
                     (0..mesh.triangle_count() as u32)
-                        .map(|index| {
-                            Shape::Triangle(Triangle {
-                                mesh: mesh.clone(),
-                                index,
-                            })
-                        })
+                        .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
                         .filter(|t| t.area() > 0.0)
                         .collect()
                 }

@@ -10,7 +10,8 @@ use crate::sampling::sample_uniform_sphere;
 #[derive(Clone, Debug)]
 pub struct Sphere {
     radius: f32,
-    world_from_object: Transform,
+    /// Boxed so that the `Shape` enum stays small for the triangles that dominate scenes.
+    world_from_object: Box<Transform>,
     flip_normals: bool,
     /// `|det|` of the linear part, for the area Jacobian.
     abs_det: f32,
@@ -24,7 +25,7 @@ impl Sphere {
         let abs_det = Mat3::from_mat4(world_from_object.m).determinant().abs();
         Self {
             radius,
-            world_from_object,
+            world_from_object: Box::new(world_from_object),
             flip_normals,
             abs_det,
         }

@@ -8,13 +8,15 @@ use super::{Interaction, ShapeHit, ShapeSample, SurfaceInteraction, TriangleMesh
 use crate::math::{gamma, Bounds3, Frame, Ray, Vec2, Vec3};
 use crate::sampling::sample_uniform_triangle;
 
-/// One triangle of a shared mesh.
+/// One triangle of a shared mesh. The vertex positions are copied in, so intersection
+/// touches only the primitive itself, not the mesh's index and position arrays.
 #[derive(Clone, Debug)]
 pub struct Triangle {
-    /// The mesh.
+    /// The mesh (normals and uvs are read from it at hits).
     pub mesh: Arc<TriangleMesh>,
     /// Index of the triangle in the mesh.
     pub index: u32,
+    p: [Vec3; 3],
 }
 
 /// `a*b - c*d` with one rounding (Kahan's algorithm via fused multiply-add).
@@ -33,10 +35,17 @@ fn permute(v: Vec3, x: usize, y: usize, z: usize) -> Vec3 {
 }
 
 impl Triangle {
+    /// Triangle `index` of `mesh`.
+    #[must_use]
+    pub fn new(mesh: Arc<TriangleMesh>, index: u32) -> Self {
+        let [a, b, c] = mesh.vertices(index);
+        let p = [mesh.positions[a], mesh.positions[b], mesh.positions[c]];
+        Self { mesh, index, p }
+    }
+
+    #[inline]
     fn positions(&self) -> [Vec3; 3] {
-        let [a, b, c] = self.mesh.vertices(self.index);
-        let p = &self.mesh.positions;
-        [p[a], p[b], p[c]]
+        self.p
     }
 
     /// World-space bounds.
