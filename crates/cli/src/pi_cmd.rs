@@ -4,10 +4,13 @@
 //! law of Monte Carlo error.
 
 use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
 use mcrender_core::lab::{estimate_pi, pi_trials, PiStats, EXACT_VARIANCE_TIMES_N};
+
+use crate::lab::plot::{check_plot_path, log_log_plot, Series};
 
 /// The lecture's sample counts: 1, 10, ..., 10^6.
 const DEFAULT_SAMPLES: &str = "1,10,100,1000,10000,100000,1000000";
@@ -29,6 +32,10 @@ pub struct PiArgs {
     /// Print the table as JSON instead.
     #[arg(long)]
     pub json: bool,
+    /// Also write a log-log plot (PNG) of the squared error of one estimate and, with
+    /// `--trials`, the measured variance against N, beside the 1/N line.
+    #[arg(long, value_name = "FILE.png")]
+    pub plot: Option<PathBuf>,
 }
 
 fn parse_samples(s: &str) -> Result<u64, String> {
@@ -58,6 +65,9 @@ struct Row {
 
 /// Run the command.
 pub fn run(args: &PiArgs) -> Result<()> {
+    if let Some(path) = &args.plot {
+        check_plot_path(path)?;
+    }
     let rows: Vec<Row> = args
         .samples
         .iter()
@@ -72,6 +82,54 @@ pub fn run(args: &PiArgs) -> Result<()> {
     } else {
         print!("{}", table(args, &rows));
     }
+    if let Some(path) = &args.plot {
+        write_plot(path, args, &rows)?;
+    }
+    Ok(())
+}
+
+/// Plot the measured variance (with trials) and the squared error of trial 0 against N.
+/// A zero value (all trials agreeing, possible for tiny N) has no place on a log axis and
+/// is left out with a note.
+fn write_plot(path: &Path, args: &PiArgs, rows: &[Row]) -> Result<()> {
+    let mut series: Vec<Series> = Vec::new();
+    let mut left_out = Vec::new();
+    let mut points = |name: &str, value: &dyn Fn(&Row) -> Option<f64>| {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| {
+                let v = value(r)?;
+                if v > 0.0 {
+                    Some((r.samples as f64, v))
+                } else {
+                    left_out.push(format!("{name} at N = {}", r.samples));
+                    None
+                }
+            })
+            .collect();
+        if !pts.is_empty() {
+            series.push((name.to_string(), pts));
+        }
+    };
+    if let Some(k) = args.trials {
+        points(&format!("variance over {k} trials"), &|r: &Row| {
+            r.stats.map(|s| s.variance)
+        });
+    }
+    points("squared error of one estimate", &|r: &Row| {
+        Some((r.estimate - PI).powi(2))
+    });
+    for what in &left_out {
+        eprintln!("mcrender: the plot leaves out the {what}: zero cannot be shown on a log axis");
+    }
+    log_log_plot(
+        path,
+        "Estimating pi: the error falls as 1/N",
+        "random points N",
+        "variance, squared error",
+        &series,
+    )?;
+    eprintln!("{}: plot written", path.display());
     Ok(())
 }
 

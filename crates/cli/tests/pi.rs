@@ -91,6 +91,37 @@ fn json_gives_the_same_rows() {
 }
 
 #[test]
+fn plot_option_writes_a_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pi.png");
+    let o = mcrender(&[
+        "pi",
+        "--samples",
+        "10,100,1000",
+        "--trials",
+        "50",
+        "--plot",
+        path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&path).expect("a valid PNG").to_rgb8();
+    assert_eq!(img.dimensions(), (800, 600));
+    let o = mcrender(&[
+        "pi",
+        "--samples",
+        "10",
+        "--plot",
+        dir.path().join("pi.jpg").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("expected extension png"), "{}", stderr(&o));
+    assert!(
+        stdout(&o).is_empty(),
+        "the table was printed before the bad plot name was noticed"
+    );
+}
+
+#[test]
 fn bad_input_exits_with_code_2_and_says_why() {
     for (args, message) in [
         (&["pi", "--samples", "0"][..], "at least 1"),
