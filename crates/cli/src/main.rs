@@ -5,6 +5,7 @@
 
 mod builtin;
 mod lab;
+mod pi_cmd;
 mod render_cmd;
 mod scene_args;
 mod study;
@@ -31,6 +32,9 @@ enum Command {
     Bounces(study::bounces::BouncesArgs),
     /// Compare Russian roulette settings: time, mean radiance and error against a reference.
     RrStudy(study::rr_study::RrStudyArgs),
+    /// Estimate pi from random points and show the variance falling as 1/N (the lecture's
+    /// coconut).
+    Pi(pi_cmd::PiArgs),
 }
 
 fn main() -> ExitCode {
@@ -40,6 +44,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => study::compare::run(&args),
         Some(Command::Bounces(args)) => study::bounces::run(&args),
         Some(Command::RrStudy(args)) => study::rr_study::run(&args),
+        Some(Command::Pi(args)) => pi_cmd::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
     match result {

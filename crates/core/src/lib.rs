@@ -12,6 +12,7 @@ pub mod camera;
 pub mod color;
 pub mod film;
 pub mod integrator;
+pub mod lab;
 pub mod light;
 pub mod material;
 pub mod math;
