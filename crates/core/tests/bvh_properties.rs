@@ -30,7 +30,12 @@ fn shapes_of(tris: &[[Vec3; 3]]) -> Vec<Shape> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        // A fixed seed keeps CI deterministic; set PROPTEST_RNG_SEED to explore others.
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6d63_7265_6e64),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn bvh_matches_brute_force(
@@ -53,8 +58,10 @@ proptest! {
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             let fast = bvh.closest_hit(&ray, f32::INFINITY, |i, r, t| shapes[i as usize].intersect(r, t).map(|h| (h.t, ())));
             let area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-            if aimed && area > 1e-3 {
-                prop_assert!(brute.is_some(), "a ray aimed at a triangle's centroid missed everything");
+            let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
+            // A ray grazing the triangle's plane may miss it within rounding error.
+            if aimed && area > 1e-3 && n.dot(d).abs() > 1e-3 {
+                prop_assert!(brute.is_some(), "a ray aimed at the centroid of {:?} missed everything: origin {o}, cos to plane {}", tri, n.dot(d));
             }
             match (brute, fast) {
                 (None, None) => {}

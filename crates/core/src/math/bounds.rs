@@ -134,10 +134,42 @@ impl Bounds3 {
         // SIMD lanes via Vec3A: four-wide arithmetic on the three slabs at once.
         let t0 = (glam::Vec3A::from(self.min) - o) * inv_d;
         let t1 = (glam::Vec3A::from(self.max) - o) * inv_d;
-        let t_near = t0.min(t1);
-        let t_far = t0.max(t1) * (1.0 + 2.0 * super::gamma(3));
+        // 0 x inf = NaN for a ray parallel to a slab whose origin lies on the slab's
+        // plane: that slab does not limit the ray (conservative, so flat boxes are not missed).
+        let nan = t0.is_nan_mask() | t1.is_nan_mask();
+        let t_near = glam::Vec3A::select(nan, glam::Vec3A::NEG_INFINITY, t0.min(t1));
+        let t_far = glam::Vec3A::select(nan, glam::Vec3A::INFINITY, t0.max(t1) * (1.0 + 2.0 * super::gamma(3)));
         let t_enter = t_near.max_element().max(0.0);
         let t_exit = t_far.min_element().min(t_max);
         t_enter <= t_exit
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3A;
+
+    /// A ray parallel to a slab with its origin exactly on the slab's plane gives 0 x inf =
+    /// NaN in the slab test; it must count as inside (conservative), as for a flat box.
+    #[test]
+    fn rays_in_a_slab_plane_hit_flat_boxes() {
+        let flat = Bounds3 {
+            min: Vec3::new(1.0, 0.0, 0.0),
+            max: Vec3::new(1.0, 1.0, 1.0),
+        };
+        let o = Vec3::new(1.0, -1.0, 0.5);
+        let d = Vec3::new(0.0, 1.0, 0.0);
+        assert!(flat.hit(Vec3A::from(o), Vec3A::from(d.recip()), f32::INFINITY));
+        let boxed = Bounds3 {
+            min: Vec3::new(1.0, 0.0, 0.0),
+            max: Vec3::new(2.0, 1.0, 1.0),
+        };
+        assert!(boxed.hit(Vec3A::from(o), Vec3A::from(d.recip()), f32::INFINITY));
+        let miss = Bounds3 {
+            min: Vec3::new(1.5, 0.0, 0.0),
+            max: Vec3::new(2.0, 1.0, 1.0),
+        };
+        assert!(!miss.hit(Vec3A::from(o), Vec3A::from(d.recip()), f32::INFINITY));
     }
 }
