@@ -198,3 +198,22 @@ fn area_light_power_normalises_each_primitive() {
         assert!((l.power().r - 10.0).abs() < 1e-4, "{:?}", l.power());
     }
 }
+
+/// Every direct-lighting strategy finds the infinite lights: by sampling them
+/// (`light-area`, `mis`) or by rays that leave the scene (`bsdf`, the hemisphere
+/// techniques), with 1 and 3 samples per vertex.
+#[test]
+fn every_direct_strategy_sees_infinite_lights() {
+    use mcrender_core::scene::DirectStrategy;
+    let (rho, l) = (0.8, Rgb::new(1.5, 0.5, 1.0));
+    for strategy in DirectStrategy::ALL {
+        for samples in [1, 3] {
+            let mut d = receiver_scene(rho, 256);
+            d.integrator.direct = strategy;
+            d.integrator.light_samples = samples;
+            d.lights.push(LightDesc::UniformInfinite { radiance: l });
+            eprintln!("{} x{samples}", strategy.name());
+            assert_mean_radiance(&d, l * rho);
+        }
+    }
+}
