@@ -36,6 +36,7 @@ fn closed_emissive_sphere_has_radiance_le_over_one_minus_albedo() {
         Some(AreaLightDesc {
             radiance: le,
             two_sided: false,
+            power: None,
         }),
         true,
     );
@@ -68,6 +69,7 @@ fn irradiance_under_uniform_sky_is_pi_l() {
         Some(AreaLightDesc {
             radiance: Rgb::splat(l),
             two_sided: false,
+            power: None,
         }),
         true,
     );

@@ -44,6 +44,7 @@ fn uniform_sky() -> SceneDescription {
         Some(AreaLightDesc {
             radiance: Rgb::splat(1.5),
             two_sided: false,
+            power: None,
         }),
         true,
     );
@@ -98,6 +99,7 @@ fn every_technique_is_unbiased_with_all_bounces() {
         Some(AreaLightDesc {
             radiance: Rgb::splat(1.0),
             two_sided: false,
+            power: None,
         }),
         true,
     );
@@ -176,6 +178,7 @@ fn russian_roulette_is_unbiased_and_saves_work() {
         Some(AreaLightDesc {
             radiance: Rgb::splat(1.0),
             two_sided: false,
+            power: None,
         }),
         true,
     );

@@ -5,7 +5,7 @@
 //! * [`pbrt`]: the pbrt-v4 scene format ([`pbrt::load_file`], [`pbrt::load_str`]);
 //! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
-//!   [`image_io::write_exr_layers`], [`image_io::read_exr`].
+//!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
 
 mod error;
 pub mod image_io;
@@ -13,5 +13,5 @@ pub mod pbrt;
 pub mod ply;
 
 pub use error::{io_error_text, Location, SceneError, SceneErrorKind};
-pub use image_io::{read_exr, write_exr_layers, write_image, ImageError, ImageRgb};
+pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, ImageError, ImageRgb};
 pub use pbrt::{load_file, load_str, LoadedScene};

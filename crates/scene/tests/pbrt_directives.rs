@@ -107,7 +107,8 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
         inner.area_light,
         Some(AreaLightDesc {
             radiance: Rgb::new(2.0, 4.0, 6.0),
-            two_sided: true
+            two_sided: true,
+            power: None
         })
     );
     assert!(inner.flip_normals);
@@ -205,9 +206,13 @@ fn point_light_is_transformed_and_scaled() {
             intensity: Rgb::new(2.0, 4.0, 6.0)
         }
     );
-    let LightDesc::Point { intensity, .. } = lights[1];
+    let LightDesc::Point { intensity, .. } = lights[1] else {
+        panic!("{:?}", lights[1])
+    };
     assert!((intensity.r - 100.0 / (4.0 * std::f32::consts::PI)).abs() < 1e-4);
-    let LightDesc::Point { intensity, .. } = lights[2];
+    let LightDesc::Point { intensity, .. } = lights[2] else {
+        panic!("{:?}", lights[2])
+    };
     assert_eq!(intensity, Rgb::splat(3.0));
 }
 

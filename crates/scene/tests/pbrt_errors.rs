@@ -221,8 +221,8 @@ fn unsupported_features_are_named() {
         "scene.pbrt:2:1: Texture \"checks\" (\"checkerboard\"): textures are not supported yet"
     );
     assert_eq!(
-        error("WorldBegin\nLightSource \"infinite\""),
-        "scene.pbrt:2:1: light type \"infinite\" is not supported yet"
+        error("WorldBegin\nLightSource \"goniometric\""),
+        "scene.pbrt:2:1: light type \"goniometric\" is not supported yet"
     );
     assert_eq!(
         error("Camera \"orthographic\""),

@@ -1,7 +1,8 @@
 //! Unidirectional path tracing (pbrt-v4 `PathIntegrator`): at every vertex, emission seen
-//! by the continuation ray (weighted as the direct-lighting strategy requires), a direct
-//! lighting estimate, a BSDF-sampled continuation, and Russian roulette. Each block below is
-//! one step of the rendering equation `L_o = L_e + integral f L_i cos`.
+//! by the continuation ray (weighted as the direct-lighting strategy requires; from the
+//! infinite lights when the ray leaves the scene), a direct lighting estimate, a
+//! BSDF-sampled continuation, and Russian roulette. Each block below is one step of the
+//! rendering equation `L_o = L_e + integral f L_i cos`.
 
 use super::{roulette, DirectEstimator, TraceStats};
 use crate::color::Rgb;
@@ -38,6 +39,22 @@ impl PathIntegrator {
             // Intersect the ray with the scene.
             stats.rays += 1;
             let Some(hit) = scene.intersect(&ray) else {
+                // The ray left the scene: add the infinite lights' emission, in full at the
+                // camera and after specular bounces, otherwise as the direct-lighting strategy
+                // weights it.
+                for &index in &scene.infinite_lights {
+                    let light = &scene.lights[index as usize];
+                    let le = light.le(ray.d);
+                    if le.is_black() {
+                        continue;
+                    }
+                    if depth == 0 || specular_bounce {
+                        l += beta * le;
+                    } else {
+                        let p_light = scene.light_sampler.pmf(index as usize) * light.pdf_li_direction(ray.d);
+                        l += beta * le * self.direct.continuation_weight(prev_bsdf_pdf, p_light);
+                    }
+                }
                 break;
             };
             let si = hit.si;

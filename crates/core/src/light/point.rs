@@ -2,7 +2,7 @@
 
 use super::LightLiSample;
 use crate::color::Rgb;
-use crate::math::{Vec3, PI};
+use crate::math::{Vec2, Vec3, PI};
 use crate::shape::Interaction;
 
 /// A point light.
@@ -15,9 +15,9 @@ pub struct PointLight {
 }
 
 impl PointLight {
-    /// The single direction to the light.
+    /// The single direction to the light; `u` is unused.
     #[must_use]
-    pub fn sample_li(&self, receiver: &Interaction) -> Option<LightLiSample> {
+    pub fn sample_li(&self, receiver: &Interaction, _u: Vec2) -> Option<LightLiSample> {
         let d = self.position - receiver.p;
         let r2 = d.length_squared();
         let wi = d.try_normalize()?;

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::math::{Mat4, Ray, Transform};
+use crate::math::{Mat4, Ray, Transform, PI};
 use crate::sampling::chi2::{suite_seed, Chi2Test, SphereGrid, SIGNIFICANCE};
 use crate::shape::{Shape, Sphere, Triangle, TriangleMesh};
 
@@ -147,4 +147,280 @@ fn power_sampler_picks_lights_in_proportion_to_power() {
     assert_eq!(s.sample(0.1).unwrap().0, 0);
     assert_eq!(s.sample(0.3).unwrap().0, 1);
     assert_eq!(s.sample(0.999_999).unwrap().0, 1);
+}
+
+// --- Infinite, distant and spot lights ------------------------------------------------
+
+use crate::math::{Bounds3, Vec2};
+use crate::sampling::chi2::RectGrid;
+
+/// An 8 x 8 environment image: dim everywhere, a bright pixel, a black pixel, a coloured
+/// row.
+fn spot_image(w: u32, h: u32) -> Vec<Rgb> {
+    let mut px = vec![Rgb::splat(0.2); (w * h) as usize];
+    px[(2 * w + 5) as usize] = Rgb::new(40.0, 30.0, 20.0);
+    px[(6 * w + 1) as usize] = Rgb::BLACK;
+    for x in 0..w {
+        px[(4 * w + x) as usize] = Rgb::new(0.0, 1.0, 3.0);
+    }
+    px
+}
+
+fn unit_bounds() -> Bounds3 {
+    Bounds3 {
+        min: Vec3::splat(-1.0),
+        max: Vec3::splat(1.0),
+    }
+}
+
+fn check_infinite_light(light: &Light, label: &str) {
+    let recv = Interaction::point(Vec3::new(0.1, 0.2, -0.3));
+    // Samples whose pdf_li disagrees with the sample's pdf: only rounding at pixel borders
+    // may do that, so they must be rare.
+    let mut mismatches = 0u32;
+    // The image's pixels are much larger than the grid's cells, so the default quadrature
+    // panels resolve the pdf's steps.
+    let report = Chi2Test::new(500_000, suite_seed()).with_test_count(5).sphere(
+        SphereGrid {
+            cos_theta_bins: 20,
+            phi_bins: 40,
+        },
+        |u, _| {
+            let s = light.sample_li(&recv, u)?;
+            // Sample and density agree, and the shadow ray ends outside the scene.
+            let pdf = light.pdf_li_direction(s.wi);
+            if (s.pdf - pdf).abs() > 1e-3 * pdf || s.l != light.le(s.wi) {
+                mismatches += 1;
+            }
+            assert!((s.p_light.p - recv.p).length() > 3.4, "{label}: shadow ray too short");
+            Some(s.wi)
+        },
+        |w| light.pdf_li_direction(w),
+    );
+    assert!(report.passes(SIGNIFICANCE), "{label}: {report}");
+    assert!(
+        (report.pdf_integral - 1.0).abs() < 2e-3,
+        "{label}: pdf integral {}",
+        report.pdf_integral
+    );
+    assert!(
+        mismatches < 20,
+        "{label}: {mismatches} samples whose pdf or radiance disagree with pdf_li or le"
+    );
+}
+
+fn env_light(mapping: EnvMapping, w: u32, h: u32, m: Mat4) -> Light {
+    let mut l = Light::ImageInfinite(ImageInfiniteLight::new(
+        w,
+        h,
+        &spot_image(w, h),
+        1.5,
+        mapping,
+        &Transform::new(m).unwrap(),
+    ));
+    l.preprocess(&unit_bounds());
+    l
+}
+
+#[test]
+fn equal_area_env_map_sampling_matches_its_pdf() {
+    check_infinite_light(&env_light(EnvMapping::EqualArea, 8, 8, Mat4::IDENTITY), "equal-area");
+}
+
+#[test]
+fn rotated_env_map_sampling_matches_its_pdf() {
+    let m = Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2) * Mat4::from_rotation_z(0.3);
+    check_infinite_light(&env_light(EnvMapping::EqualArea, 8, 8, m), "rotated equal-area");
+}
+
+/// A linear map that is not a rotation: the directions are renormalised and the pdf has to
+/// carry the Jacobian.
+#[test]
+fn sheared_env_map_sampling_matches_its_pdf() {
+    let m = Mat4::from_cols_array(&[
+        1.0, 0.4, 0.0, 0.0, 0.0, 0.8, 0.0, 0.0, 0.3, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 1.0,
+    ]);
+    check_infinite_light(&env_light(EnvMapping::EqualArea, 8, 8, m), "sheared equal-area");
+}
+
+#[test]
+fn equirect_env_map_sampling_matches_its_pdf() {
+    check_infinite_light(&env_light(EnvMapping::Equirect, 16, 8, Mat4::IDENTITY), "equirect");
+}
+
+#[test]
+fn uniform_infinite_light_sampling_matches_its_pdf() {
+    let mut l = Light::UniformInfinite(UniformInfiniteLight {
+        radiance: Rgb::splat(2.0),
+        scene_radius: 0.0,
+    });
+    l.preprocess(&unit_bounds());
+    check_infinite_light(&l, "uniform");
+}
+
+/// The image's pixels are where the mapping says: the centre of the equal-area square is +z,
+/// pixel (5, 2) of the bright spot is where the bright samples go, and an equirect image's
+/// top row is +z.
+#[test]
+fn env_map_lookup_follows_the_mapping() {
+    let Light::ImageInfinite(l) = env_light(EnvMapping::EqualArea, 8, 8, Mat4::IDENTITY) else {
+        unreachable!()
+    };
+    let bright = l.direction(Vec2::new(5.5 / 8.0, 2.5 / 8.0));
+    assert_eq!(l.le(bright), Rgb::new(60.0, 45.0, 30.0));
+    assert_eq!(l.le(Vec3::Z), l.lookup(Vec2::splat(0.5)));
+    let Light::ImageInfinite(e) = env_light(EnvMapping::Equirect, 16, 8, Mat4::IDENTITY) else {
+        unreachable!()
+    };
+    assert!((e.direction(Vec2::new(0.3, 0.0)) - Vec3::Z).length() < 1e-6);
+    assert!((e.direction(Vec2::new(0.25, 0.5)) - Vec3::Y).length() < 1e-6);
+    let uv = e.uv(Vec3::new(-0.3, -0.5, 0.2).normalize());
+    assert!((e.direction(uv) - Vec3::new(-0.3, -0.5, 0.2).normalize()).length() < 1e-5);
+}
+
+/// pbrt-v4's powers: `4 pi^2 r^2 L` for a uniform sky, `pi r^2 L` for a distant light, the
+/// same as a uniform sky for a constant environment map in either layout.
+#[test]
+fn infinite_and_distant_light_powers() {
+    let r2 = 3.0f32; // (half the diagonal of [-1, 1]^3)^2
+    let mut lights = [
+        Light::UniformInfinite(UniformInfiniteLight {
+            radiance: Rgb::splat(2.0),
+            scene_radius: 0.0,
+        }),
+        Light::Distant(DistantLight {
+            direction: Vec3::Z,
+            radiance: Rgb::splat(2.0),
+            scene_radius: 0.0,
+        }),
+        Light::ImageInfinite(ImageInfiniteLight::new(
+            4,
+            4,
+            &[Rgb::splat(1.0); 16],
+            2.0,
+            EnvMapping::EqualArea,
+            &Transform::IDENTITY,
+        )),
+        Light::ImageInfinite(ImageInfiniteLight::new(
+            6,
+            3,
+            &[Rgb::splat(1.0); 18],
+            2.0,
+            EnvMapping::Equirect,
+            &Transform::IDENTITY,
+        )),
+    ];
+    lights.iter_mut().for_each(|l| l.preprocess(&unit_bounds()));
+    let sky = 4.0 * PI * PI * r2 * 2.0;
+    let expected = [sky, PI * r2 * 2.0, sky, sky];
+    for (l, e) in lights.iter().zip(expected) {
+        assert!((l.power().g - e).abs() < 1e-4 * e, "{l:?}: {} vs {e}", l.power().g);
+    }
+}
+
+/// pbrt-v4's spot falloff: full intensity inside the falloff start, zero outside the cone,
+/// smoothstep in between; Li = I falloff / r^2; the power integrates the falloff.
+#[test]
+fn spot_light_falloff_and_power() {
+    let (start, end) = (20.0f32.to_radians(), 30.0f32.to_radians());
+    let pos = Vec3::new(0.0, 2.0, 0.0);
+    // Pointing down -y: light-space +z to world -y.
+    let m = Mat4::from_translation(pos) * Mat4::from_rotation_x(PI / 2.0);
+    let spot = SpotLight {
+        world_from_light: Transform::new(m).unwrap(),
+        intensity: Rgb::new(3.0, 2.0, 1.0),
+        cos_falloff_start: start.cos(),
+        cos_falloff_end: end.cos(),
+    };
+    let li_at = |angle: f32| {
+        let recv = pos + 2.0 * Vec3::new(angle.sin(), -angle.cos(), 0.0);
+        spot.sample_li(&Interaction::point(recv), Vec2::ZERO).map(|s| s.l)
+    };
+    let on_axis = li_at(0.0).unwrap();
+    assert!((on_axis.r - 0.75).abs() < 1e-5, "{on_axis:?}");
+    assert!((li_at(19.0f32.to_radians()).unwrap().r - 0.75).abs() < 1e-5);
+    assert!(li_at(31.0f32.to_radians()).is_none());
+    let a = 25.0f32.to_radians();
+    let t = (a.cos() - end.cos()) / (start.cos() - end.cos());
+    let expected = 0.75 * t * t * (3.0 - 2.0 * t);
+    assert!(
+        (li_at(a).unwrap().r - expected).abs() < 1e-4,
+        "{:?} vs {expected}",
+        li_at(a)
+    );
+    // Power: integrate the falloff over the sphere numerically.
+    let n = 200_000;
+    let mut sum = 0.0f64;
+    for i in 0..n {
+        let cos_t = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+        sum += f64::from(smooth_step(cos_t as f32, spot.cos_falloff_end, spot.cos_falloff_start));
+    }
+    let integral = (sum * 2.0 / n as f64 * 2.0 * std::f64::consts::PI) as f32;
+    assert!(
+        (spot.power().r - 3.0 * integral).abs() < 1e-3 * spot.power().r,
+        "{:?} vs {integral}",
+        spot.power()
+    );
+    assert_eq!(smooth_step(0.5, 0.5, 0.5), 1.0);
+    assert_eq!(smooth_step(0.4, 0.5, 0.5), 0.0);
+}
+
+/// The distant light arrives from its direction everywhere and its shadow ray leaves the
+/// scene.
+#[test]
+fn distant_light_sample() {
+    let mut l = Light::Distant(DistantLight {
+        direction: Vec3::new(0.0, 0.6, 0.8),
+        radiance: Rgb::splat(5.0),
+        scene_radius: 0.0,
+    });
+    l.preprocess(&unit_bounds());
+    let recv = Interaction::point(Vec3::new(0.5, -0.5, 0.5));
+    let s = l.sample_li(&recv, Vec2::new(0.3, 0.9)).unwrap();
+    assert_eq!((s.wi, s.l, s.pdf), (Vec3::new(0.0, 0.6, 0.8), Rgb::splat(5.0), 1.0));
+    assert!(((s.p_light.p - recv.p).length() - 2.0 * 3.0f32.sqrt()).abs() < 1e-4);
+    assert!(l.is_delta() && !l.is_infinite());
+    assert_eq!(l.pdf_li_direction(s.wi), 0.0);
+    assert_eq!(l.le(s.wi), Rgb::BLACK);
+}
+
+/// The power-based sampler picks an environment map against a point light by pbrt's powers.
+#[test]
+fn power_sampler_weighs_infinite_lights_by_scene_size() {
+    let mut lights = vec![
+        Light::UniformInfinite(UniformInfiniteLight {
+            radiance: Rgb::splat(1.0),
+            scene_radius: 0.0,
+        }),
+        Light::Point(PointLight {
+            position: Vec3::ZERO,
+            intensity: Rgb::splat(3.0 * PI),
+        }),
+    ];
+    lights.iter_mut().for_each(|l| l.preprocess(&unit_bounds()));
+    let s = PowerLightSampler::new(&lights);
+    // 4 pi^2 * 3 against 4 pi * 3 pi: equal.
+    assert!((s.pmf(0) - 0.5).abs() < 1e-5, "{}", s.pmf(0));
+}
+
+#[test]
+fn equal_area_grid_sanity() {
+    // The chi-square harness's rect grid over the unit square, for the distribution itself.
+    let Light::ImageInfinite(l) = env_light(EnvMapping::EqualArea, 8, 8, Mat4::IDENTITY) else {
+        unreachable!()
+    };
+    let grid = RectGrid {
+        min: Vec2::ZERO,
+        max: Vec2::ONE,
+        bins: crate::math::UVec2::new(16, 16),
+    };
+    let report = Chi2Test::new(200_000, suite_seed()).rect(
+        grid,
+        |u, _| {
+            let s = l.sample_li(&Interaction::point(Vec3::ZERO), u)?;
+            Some(l.uv(s.wi))
+        },
+        |p| l.pdf_li(l.direction(p)) * 4.0 * PI,
+    );
+    assert!(report.passes(SIGNIFICANCE), "{report}");
 }

@@ -4,11 +4,14 @@
 
 use std::sync::Arc;
 
-use super::{GeometryDesc, LightDesc, MaterialDesc, Primitive, Scene, SceneDescription};
+use super::{EnvMapping, GeometryDesc, LightDesc, MaterialDesc, Primitive, Scene, SceneDescription};
 use crate::accel::Bvh;
 use crate::camera::{Camera, PerspectiveCamera};
 use crate::film::Filter;
-use crate::light::{DiffuseAreaLight, Light, PointLight, PowerLightSampler};
+use crate::light::{
+    DiffuseAreaLight, DistantLight, ImageInfiniteLight, Light, PointLight, PowerLightSampler, SpotLight,
+    UniformInfiniteLight,
+};
 use crate::material::Material;
 use crate::shape::{Shape, Sphere, Triangle, TriangleMesh};
 
@@ -120,6 +123,9 @@ impl SceneDescription {
             }
             if let Some(a) = &s.area_light {
                 check_non_negative(&format!("emitted radiance of shape {i}"), &a.radiance.to_array())?;
+                if let Some(p) = a.power {
+                    check_non_negative(&format!("power of the area light of shape {i}"), &[p])?;
+                }
             }
             match &s.geometry {
                 GeometryDesc::TriangleMesh(m) => {
@@ -173,15 +179,82 @@ impl SceneDescription {
             }
         }
         for (i, l) in self.lights.iter().enumerate() {
-            match l {
-                LightDesc::Point { position, intensity } => {
-                    check_finite(&format!("position of light {i}"), &position.to_array())?;
-                    check_non_negative(&format!("intensity of light {i}"), &intensity.to_array())?;
-                }
-            }
+            validate_light(i, l)?;
         }
         Ok(())
     }
+}
+
+fn validate_light(i: usize, l: &LightDesc) -> Result<(), BuildError> {
+    match l {
+        LightDesc::Point { position, intensity } => {
+            check_finite(&format!("position of light {i}"), &position.to_array())?;
+            check_non_negative(&format!("intensity of light {i}"), &intensity.to_array())?;
+        }
+        LightDesc::Spot(s) => {
+            check_finite(
+                &format!("transform of light {i}"),
+                &s.world_from_light.m.to_cols_array(),
+            )?;
+            check_non_negative(&format!("intensity of light {i}"), &s.intensity.to_array())?;
+            let (start, end) = (s.cos_falloff_start, s.cos_falloff_end);
+            if !((-1.0..=1.0).contains(&start) && (-1.0..=1.0).contains(&end) && end <= start) {
+                return Err(invalid(
+                    format!("cone of light {i}"),
+                    format!("expected -1 <= cos_falloff_end <= cos_falloff_start <= 1, found {end} and {start}"),
+                ));
+            }
+        }
+        LightDesc::Distant { direction, radiance } => {
+            check_finite(&format!("direction of light {i}"), &direction.to_array())?;
+            if (direction.length() - 1.0).abs() > 1e-3 {
+                return Err(invalid(
+                    format!("direction of light {i}"),
+                    format!("expected a unit vector, found {direction}"),
+                ));
+            }
+            check_non_negative(&format!("radiance of light {i}"), &radiance.to_array())?;
+        }
+        LightDesc::UniformInfinite { radiance } => {
+            check_non_negative(&format!("radiance of light {i}"), &radiance.to_array())?;
+        }
+        LightDesc::ImageInfinite(e) => {
+            let what = format!("environment image of light {i}");
+            let (w, h) = (e.image.width, e.image.height);
+            if w == 0 || h == 0 || u64::from(w) * u64::from(h) > MAX_PIXELS {
+                return Err(invalid(what, format!("{w}x{h}; expected 1 to {MAX_PIXELS} pixels")));
+            }
+            if e.image.pixels.len() as u64 != u64::from(w) * u64::from(h) {
+                return Err(invalid(
+                    what,
+                    format!("{} pixels do not make a {w}x{h} image", e.image.pixels.len()),
+                ));
+            }
+            if e.mapping == EnvMapping::EqualArea && w != h {
+                return Err(invalid(
+                    what,
+                    format!("{w}x{h} is not square, as the equal-area mapping needs"),
+                ));
+            }
+            if let Some(p) = e
+                .image
+                .pixels
+                .iter()
+                .find(|p| !p.is_finite() || p.to_array().iter().any(|c| *c < 0.0))
+            {
+                return Err(invalid(
+                    what,
+                    format!("expected finite non-negative pixels, found {p:?}"),
+                ));
+            }
+            check_non_negative(&format!("scale of light {i}"), &[e.scale])?;
+            check_finite(
+                &format!("transform of light {i}"),
+                &e.world_from_light.m.to_cols_array(),
+            )?;
+        }
+    }
+    Ok(())
 }
 
 fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
@@ -234,9 +307,15 @@ impl Scene {
             };
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
+                    let sides = if a.two_sided { 2.0 } else { 1.0 };
+                    // pbrt-v4's `power`: per primitive (one light per triangle), by its area.
+                    let radiance = match a.power {
+                        Some(p) => a.radiance * (p / (std::f32::consts::PI * sides * shape.area())),
+                        None => a.radiance,
+                    };
                     lights.push(Light::DiffuseArea(DiffuseAreaLight {
                         shape: shape.clone(),
-                        radiance: a.radiance,
+                        radiance,
                         two_sided: a.two_sided,
                     }));
                     (lights.len() - 1) as u32
@@ -249,19 +328,47 @@ impl Scene {
             }
         }
         for l in &desc.lights {
-            match *l {
-                LightDesc::Point { position, intensity } => {
-                    lights.push(Light::Point(PointLight { position, intensity }))
-                }
-            }
+            lights.push(match l {
+                &LightDesc::Point { position, intensity } => Light::Point(PointLight { position, intensity }),
+                LightDesc::Spot(s) => Light::Spot(SpotLight {
+                    world_from_light: s.world_from_light,
+                    intensity: s.intensity,
+                    cos_falloff_start: s.cos_falloff_start,
+                    cos_falloff_end: s.cos_falloff_end,
+                }),
+                &LightDesc::Distant { direction, radiance } => Light::Distant(DistantLight {
+                    direction: direction.normalize(),
+                    radiance,
+                    scene_radius: 0.0,
+                }),
+                &LightDesc::UniformInfinite { radiance } => Light::UniformInfinite(UniformInfiniteLight {
+                    radiance,
+                    scene_radius: 0.0,
+                }),
+                LightDesc::ImageInfinite(e) => Light::ImageInfinite(ImageInfiniteLight::new(
+                    e.image.width,
+                    e.image.height,
+                    &e.image.pixels,
+                    e.scale,
+                    e.mapping,
+                    &e.world_from_light,
+                )),
+            });
         }
         let bounds: Vec<_> = primitives.iter().map(|p: &Primitive| p.shape.bounds()).collect();
         let bvh = Bvh::build(&bounds);
+        // Distant and infinite lights need the scene's size before their power is known.
+        let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));
+        lights.iter_mut().for_each(|l| l.preprocess(&scene_bounds));
+        let infinite_lights = (0..lights.len() as u32)
+            .filter(|&i| lights[i as usize].is_infinite())
+            .collect();
         Ok(Self {
             primitives,
             materials,
             light_sampler: PowerLightSampler::new(&lights),
             lights,
+            infinite_lights,
             camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film)),
             filter: Filter::new(&desc.filter),
             film: desc.film,

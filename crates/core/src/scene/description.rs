@@ -4,6 +4,7 @@
 //! meshes are in world space. No strings, files or parsing state reach the core.
 
 use crate::color::Rgb;
+pub use crate::light::EnvMapping;
 use crate::math::{Transform, Vec2, Vec3};
 
 /// Index into [`SceneDescription::materials`].
@@ -256,6 +257,12 @@ pub struct AreaLightDesc {
     pub radiance: Rgb,
     /// Emit on both sides instead of only on the side the surface normal points to.
     pub two_sided: bool,
+    /// pbrt's `power` (W): when set, the radiance of every primitive the shape is made of
+    /// is multiplied by `power / (pi A (two_sided ? 2 : 1))`, `A` that primitive's area.
+    /// As in pbrt-v4, which makes one light per primitive, this is per primitive: each
+    /// triangle of an emitting mesh emits `power` (times the luminance of `radiance`'s
+    /// colour relative to white, which pbrt does not normalise away for RGB emission).
+    pub power: Option<f32>,
 }
 
 /// One shape with its material and optional emission.
@@ -299,14 +306,76 @@ pub struct TriangleMeshDesc {
     pub uvs: Option<Vec<Vec2>>,
 }
 
-/// A light that is not a shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A light that is not a shape. Directions and positions are in world space; pbrt's
+/// `scale`, `power` and `illuminance` are already applied to the emitted quantities, except
+/// for [`ImageInfiniteLightDesc::scale`].
+#[derive(Clone, Debug, PartialEq)]
 pub enum LightDesc {
     /// An isotropic point light (pbrt `point`).
     Point {
         /// World position.
         position: Vec3,
-        /// Radiant intensity (W/sr per channel), `scale` already applied.
+        /// Radiant intensity (W/sr per channel).
         intensity: Rgb,
     },
+    /// A cone of light with a smooth falloff at its edge (pbrt `spot`).
+    Spot(SpotLightDesc),
+    /// Parallel light from one direction, as from a very distant source (pbrt `distant`).
+    Distant {
+        /// Unit direction from the scene towards the light.
+        direction: Vec3,
+        /// Radiance, which equals the irradiance on a surface facing the light.
+        radiance: Rgb,
+    },
+    /// The same radiance from every direction, from infinitely far away (pbrt `infinite`
+    /// with `L`).
+    UniformInfinite {
+        /// Radiance.
+        radiance: Rgb,
+    },
+    /// Radiance from infinitely far away, read from an environment image (pbrt `infinite`
+    /// with `filename`).
+    ImageInfinite(ImageInfiniteLightDesc),
+}
+
+/// A spot light: intensity `I` inside a cone around the light's +z axis, falling off
+/// smoothly to zero between the cone angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLightDesc {
+    /// World-from-light transform: the light sits at the light-space origin and points
+    /// along light-space +z.
+    pub world_from_light: Transform,
+    /// Radiant intensity on the axis (W/sr per channel).
+    pub intensity: Rgb,
+    /// Cosine of the angle where the falloff starts (full intensity inside it).
+    pub cos_falloff_start: f32,
+    /// Cosine of the angle where the intensity reaches zero (`<= cos_falloff_start`).
+    pub cos_falloff_end: f32,
+}
+
+/// A linear RGB image, row-major, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RgbImageDesc {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width * height` pixels, row by row from the top.
+    pub pixels: Vec<Rgb>,
+}
+
+/// An environment-map light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageInfiniteLightDesc {
+    /// The emitted radiance per direction, before `scale`.
+    pub image: RgbImageDesc,
+    /// How the image covers the sphere.
+    pub mapping: EnvMapping,
+    /// Factor applied to every pixel (pbrt's `scale`, times the `illuminance`
+    /// normalisation).
+    pub scale: f32,
+    /// World-from-light transform of directions (the CTM at the `LightSource`). Its linear
+    /// part should be a rotation, possibly scaled; other linear maps are honoured exactly
+    /// (directions are renormalised and the sampling pdf carries the Jacobian).
+    pub world_from_light: Transform,
 }

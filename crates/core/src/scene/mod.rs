@@ -44,6 +44,9 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Lights (area lights point back at their primitive's shape).
     pub lights: Vec<Light>,
+    /// Indices into [`Self::lights`] of the infinite lights, which rays leaving the scene
+    /// see.
+    pub infinite_lights: Vec<u32>,
     /// Chooses a light per shading point.
     pub light_sampler: PowerLightSampler,
     /// The camera.

@@ -93,6 +93,7 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
         area_light: Some(AreaLightDesc {
             radiance: l,
             two_sided: false,
+            power: None,
         }),
         flip_normals: false,
     });
@@ -110,6 +111,7 @@ pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) 
         area_light: Some(AreaLightDesc {
             radiance: l,
             two_sided: false,
+            power: None,
         }),
         flip_normals: false,
     });

@@ -1,17 +1,22 @@
 //! Image files: [`write_image`] picks PNG (8-bit sRGB) or EXR (linear 32-bit float) by the
-//! file extension; [`write_exr_layers`] writes extra named layers; [`read_exr`] reads an
-//! EXR's RGB. Every write is atomic: the image goes to a temporary file in the target
+//! file extension; [`write_exr_layers`] writes extra named layers; [`read_image`] reads
+//! EXR, PFM, PNG, JPEG or TGA as linear RGB ([`read_exr`], [`read_pfm`] for the float
+//! formats). Every write is atomic: the image goes to a temporary file in the target
 //! directory that is renamed over the target only when complete.
 
 mod atomic;
 mod exr;
+mod pfm;
 mod png;
+mod read;
 
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
 
 pub use self::exr::{read_exr, write_exr_layers};
+pub use self::pfm::read_pfm;
+pub use self::read::read_image;
 
 /// A linear RGB image, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]

@@ -9,12 +9,15 @@ use crate::scene::Scene;
 use crate::shape::SurfaceInteraction;
 
 /// Radiance emitted towards `si` by whatever the ray from `si` in direction `wi` hits first
-/// (black for non-emitters and for escaped rays in scenes without infinite lights).
+/// (black for non-emitters; the infinite lights' emission for rays that leave the scene).
 pub fn emitted_toward(scene: &Scene, si: &SurfaceInteraction, wi: Vec3, stats: &mut TraceStats) -> Rgb {
     stats.rays += 1;
     let ray = si.spawn_ray(wi);
     let Some(hit) = scene.intersect(&ray) else {
-        return Rgb::BLACK;
+        return scene
+            .infinite_lights
+            .iter()
+            .fold(Rgb::BLACK, |sum, &i| sum + scene.lights[i as usize].le(wi));
     };
     match scene.primitives[hit.primitive as usize]
         .light

@@ -4,6 +4,7 @@
 
 mod cone;
 mod disk;
+mod equal_area;
 mod hemisphere;
 mod sphere;
 mod tent;
@@ -14,6 +15,7 @@ pub use disk::{
     invert_uniform_disk_concentric, invert_uniform_disk_polar, sample_uniform_disk_concentric,
     sample_uniform_disk_polar, uniform_disk_pdf,
 };
+pub use equal_area::{equal_area_sphere_to_square, equal_area_square_to_sphere};
 pub use hemisphere::{
     cosine_hemisphere_pdf, invert_cosine_hemisphere, invert_uniform_hemisphere, sample_cosine_hemisphere,
     sample_uniform_hemisphere, uniform_hemisphere_pdf,
