@@ -197,12 +197,12 @@ fn block_structure() {
 #[test]
 fn unsupported_features_are_named() {
     assert_eq!(
-        error("WorldBegin\nMaterial \"conductor\""),
-        "scene.pbrt:2:1: material type \"conductor\" is not supported yet"
+        error("WorldBegin\nMaterial \"coatedconductor\""),
+        "scene.pbrt:2:1: material type \"coatedconductor\" is not supported yet"
     );
     assert_eq!(
-        error("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"dielectric\""),
-        "scene.pbrt:2:23: material type \"dielectric\" is not supported yet (in MakeNamedMaterial \"m\")"
+        error("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"mix\""),
+        "scene.pbrt:2:23: material type \"mix\" is not supported yet (in MakeNamedMaterial \"m\")"
     );
     assert_eq!(
         error("WorldBegin\nMaterial \"shiny\""),

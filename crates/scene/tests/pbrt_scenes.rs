@@ -142,19 +142,37 @@ fn coffee_fails_naming_the_unsupported_material() {
 }
 
 #[test]
-fn veach_mis_fails_naming_the_unsupported_material() {
-    let Some(dir) = shared_scenes("veach_mis_fails_naming_the_unsupported_material") else {
+fn veach_mis_loads_with_its_conductor_plates() {
+    let Some(dir) = shared_scenes("veach_mis_loads_with_its_conductor_plates") else {
         return;
     };
-    let path = dir.join("veach-mis/scene-v4.pbrt");
-    let err = load_file(&path).unwrap_err();
-    assert_eq!(err.kind, SceneErrorKind::Unsupported);
-    assert_eq!(
-        err.to_string(),
-        format!(
-            "{}:23:5: material type \"conductor\" is not supported yet (in MakeNamedMaterial \"Smooth\")",
-            path.display()
-        )
+    let scene = load_file(&dir.join("veach-mis/scene-v4.pbrt")).unwrap_or_else(|e| panic!("{e}"));
+    let d = &scene.description;
+    let plates: Vec<f32> = d
+        .materials
+        .iter()
+        .filter_map(|m| match *m {
+            MaterialDesc::Conductor {
+                eta,
+                k,
+                reflectance: None,
+                u_roughness,
+                v_roughness,
+                remap_roughness: false,
+            } => {
+                assert_eq!(eta, Rgb::new(0.200438, 0.924033, 1.102212));
+                assert_eq!(k, Rgb::new(3.912949, 2.452848, 2.142188));
+                assert_eq!(u_roughness, v_roughness);
+                Some(u_roughness)
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(plates, [0.01, 0.05, 0.1, 0.25]);
+    assert!(
+        scene.warnings.iter().all(|w| !w.contains("conductor")),
+        "{:?}",
+        scene.warnings
     );
 }
 

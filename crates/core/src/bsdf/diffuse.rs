@@ -51,6 +51,7 @@ impl DiffuseBxdf {
             wi,
             pdf,
             flags: BxdfFlags::DIFFUSE_REFLECTION,
+            eta: 1.0,
         })
     }
 

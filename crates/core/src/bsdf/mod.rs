@@ -4,11 +4,22 @@
 //! Conventions: `f` excludes the cosine factor; pdfs are per unit solid angle; `wo` and `wi`
 //! both point away from the surface.
 
+mod conductor;
+mod dielectric;
 mod diffuse;
+mod diffuse_transmission;
 mod flags;
+pub mod fresnel;
+pub mod microfacet;
+mod thin_dielectric;
 
+pub use conductor::ConductorBxdf;
+pub use dielectric::DielectricBxdf;
 pub use diffuse::DiffuseBxdf;
+pub use diffuse_transmission::DiffuseTransmissionBxdf;
 pub use flags::BxdfFlags;
+pub use microfacet::{roughness_to_alpha, TrowbridgeReitz};
+pub use thin_dielectric::ThinDielectricBxdf;
 
 use crate::color::Rgb;
 use crate::math::{Frame, Vec2, Vec3};
@@ -24,6 +35,10 @@ pub struct BsdfSample {
     pub pdf: f32,
     /// Kind of scattering sampled.
     pub flags: BxdfFlags,
+    /// For transmission, the relative index of refraction crossed (index on the side of
+    /// `wi` over that on the side of `wo`); 1 otherwise. Radiance crossing the interface is
+    /// scaled by `1 / eta^2` in `f`; the integrator undoes that for Russian roulette.
+    pub eta: f32,
 }
 
 /// The closed set of lobes.
@@ -31,12 +46,24 @@ pub struct BsdfSample {
 pub enum Bxdf {
     /// Lambertian reflection.
     Diffuse(DiffuseBxdf),
+    /// Smooth or rough (microfacet) conductor.
+    Conductor(ConductorBxdf),
+    /// Smooth or rough dielectric interface: reflection and refraction.
+    Dielectric(DielectricBxdf),
+    /// Thin dielectric slab: specular reflection and straight transmission.
+    ThinDielectric(ThinDielectricBxdf),
+    /// Lambertian reflection and transmission.
+    DiffuseTransmission(DiffuseTransmissionBxdf),
 }
 
 macro_rules! dispatch {
     ($self:ident, $b:ident => $e:expr) => {
         match $self {
             Bxdf::Diffuse($b) => $e,
+            Bxdf::Conductor($b) => $e,
+            Bxdf::Dielectric($b) => $e,
+            Bxdf::ThinDielectric($b) => $e,
+            Bxdf::DiffuseTransmission($b) => $e,
         }
     };
 }

@@ -5,6 +5,7 @@
 //! rendering equation `L_o = L_e + integral f L_i cos`.
 
 use super::{roulette, DirectEstimator, TraceStats};
+use crate::bsdf::BxdfFlags;
 use crate::color::Rgb;
 use crate::light::Light;
 use crate::math::Ray;
@@ -34,6 +35,9 @@ impl PathIntegrator {
         let mut specular_bounce = true;
         let mut prev: Interaction = Interaction::point(ray.o);
         let mut prev_bsdf_pdf = 0.0f32;
+        // Product of eta^2 over the transmissions so far: undoes the 1/eta^2 radiance
+        // scaling in beta for Russian roulette, which should not kill paths inside glass.
+        let mut eta_scale = 1.0f32;
 
         loop {
             // Intersect the ray with the scene.
@@ -102,14 +106,18 @@ impl PathIntegrator {
             };
             beta *= bs.f * (bs.wi.dot(si.ns).abs() / bs.pdf);
             specular_bounce = bs.flags.is_specular();
+            if bs.flags.contains(BxdfFlags::TRANSMISSION) {
+                eta_scale *= bs.eta * bs.eta;
+            }
             prev_bsdf_pdf = bs.pdf;
             prev = si.intr;
             ray = si.spawn_ray(bs.wi);
 
-            // Russian roulette.
+            // Russian roulette, on the throughput without the 1/eta^2 radiance scaling of
+            // refraction (pbrt-v4's etaScale), so paths inside glass are not cut short.
             let u_rr = sampler.get_1d();
-            match roulette(self.russian_roulette, beta, depth, u_rr) {
-                Some(b) if !b.is_black() => beta = b,
+            match roulette(self.russian_roulette, beta * eta_scale, depth, u_rr) {
+                Some(b) if !b.is_black() => beta = b / eta_scale,
                 _ => break,
             }
         }

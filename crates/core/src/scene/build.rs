@@ -112,6 +112,40 @@ impl SceneDescription {
                 MaterialDesc::Diffuse { reflectance } => {
                     check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
                 }
+                MaterialDesc::Conductor {
+                    eta,
+                    k,
+                    reflectance,
+                    u_roughness,
+                    v_roughness,
+                    ..
+                } => {
+                    check_non_negative(&format!("eta of material {i}"), &eta.to_array())?;
+                    check_non_negative(&format!("k of material {i}"), &k.to_array())?;
+                    if let Some(r) = reflectance {
+                        check_non_negative(&format!("reflectance of material {i}"), &r.to_array())?;
+                    }
+                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                }
+                MaterialDesc::Dielectric {
+                    eta,
+                    u_roughness,
+                    v_roughness,
+                    ..
+                } => {
+                    check_positive_eta(i, *eta)?;
+                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                }
+                MaterialDesc::ThinDielectric { eta } => check_positive_eta(i, *eta)?,
+                MaterialDesc::DiffuseTransmission {
+                    reflectance,
+                    transmittance,
+                    scale,
+                } => {
+                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
+                    check_non_negative(&format!("transmittance of material {i}"), &transmittance.to_array())?;
+                    check_non_negative(&format!("scale of material {i}"), &[*scale])?;
+                }
             }
         }
         for (i, s) in self.shapes.iter().enumerate() {
@@ -257,6 +291,17 @@ fn validate_light(i: usize, l: &LightDesc) -> Result<(), BuildError> {
     Ok(())
 }
 
+fn check_positive_eta(material: usize, eta: f32) -> Result<(), BuildError> {
+    if eta > 0.0 && eta.is_finite() {
+        Ok(())
+    } else {
+        Err(invalid(
+            format!("index of refraction of material {material}"),
+            format!("expected a finite value > 0, found {eta}"),
+        ))
+    }
+}
+
 fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
     if r.iter().all(|v| *v > 0.0 && v.is_finite()) {
         Ok(())
@@ -269,15 +314,7 @@ impl Scene {
     /// Validate the description and build the scene.
     pub fn build(desc: &SceneDescription) -> Result<Self, BuildError> {
         desc.validate()?;
-        let materials = desc
-            .materials
-            .iter()
-            .map(|m| match m {
-                MaterialDesc::Diffuse { reflectance } => Material::Diffuse {
-                    reflectance: *reflectance,
-                },
-            })
-            .collect();
+        let materials = desc.materials.iter().map(Material::from_desc).collect();
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         for s in &desc.shapes {

@@ -248,6 +248,52 @@ pub enum MaterialDesc {
         /// Albedo in [0, 1].
         reflectance: Rgb,
     },
+    /// A metal (pbrt `conductor`): a mirror, or a Trowbridge-Reitz microfacet surface when
+    /// rough, with Fresnel from a complex index of refraction per channel.
+    Conductor {
+        /// Real part of the index of refraction (relative to the outside), per channel.
+        eta: Rgb,
+        /// Imaginary part (absorption), per channel.
+        k: Rgb,
+        /// When given, replaces `eta` and `k` as pbrt does: `eta = 1`,
+        /// `k = 2 sqrt(r) / sqrt(1 - r)`, the index whose normal-incidence reflectance is
+        /// `r` (clamped to [0, 0.9999]).
+        reflectance: Option<Rgb>,
+        /// Roughness along the shading tangent (`dpdu`).
+        u_roughness: f32,
+        /// Roughness along the bitangent.
+        v_roughness: f32,
+        /// Map roughness to microfacet alpha by `sqrt` (pbrt's `remaproughness`, default
+        /// true); otherwise the roughness is alpha itself.
+        remap_roughness: bool,
+    },
+    /// Glass, water (pbrt `dielectric`): reflection and refraction, smooth or rough.
+    Dielectric {
+        /// Index of refraction of the inside (the side opposite the surface normal) over
+        /// the outside; 1 passes light straight through.
+        eta: f32,
+        /// Roughness along the shading tangent.
+        u_roughness: f32,
+        /// Roughness along the bitangent.
+        v_roughness: f32,
+        /// As for [`MaterialDesc::Conductor`].
+        remap_roughness: bool,
+    },
+    /// A thin slab such as a window pane (pbrt `thindielectric`): specular reflection and
+    /// straight transmission, interreflections inside summed.
+    ThinDielectric {
+        /// Index of refraction of the slab.
+        eta: f32,
+    },
+    /// Lambertian reflection and transmission (pbrt `diffusetransmission`).
+    DiffuseTransmission {
+        /// Reflectance (clamped to [0, 1] after scaling).
+        reflectance: Rgb,
+        /// Transmittance (clamped to [0, 1] after scaling).
+        transmittance: Rgb,
+        /// Factor applied to both.
+        scale: f32,
+    },
 }
 
 /// The emission of an area light attached to a shape (pbrt `AreaLightSource "diffuse"`).

@@ -287,7 +287,7 @@ impl SceneBuilder {
         }
 
         let mut materials: Vec<MaterialDesc> = Vec::new();
-        let mut material_ids: HashMap<[u32; 3], MaterialId> = HashMap::new();
+        let mut material_ids: HashMap<String, MaterialId> = HashMap::new();
         let mut shapes = Vec::with_capacity(self.shapes.len());
         for (mut shape, material) in std::mem::take(&mut self.shapes) {
             let desc = match material {
@@ -337,12 +337,11 @@ impl SceneBuilder {
 /// Index of `desc` in `materials`, adding it when it is new.
 fn intern_material(
     materials: &mut Vec<MaterialDesc>,
-    ids: &mut HashMap<[u32; 3], MaterialId>,
+    ids: &mut HashMap<String, MaterialId>,
     desc: MaterialDesc,
 ) -> MaterialId {
-    let MaterialDesc::Diffuse { reflectance } = &desc;
-    // `+ 0.0` folds -0 into +0 so equal colours share a key.
-    let key = reflectance.to_array().map(|c| (c + 0.0).to_bits());
+    // The key is the description's text with -0 folded into +0, so equal values share it.
+    let key = format!("{desc:?}").replace("-0.0,", "0.0,").replace("-0.0 ", "0.0 ");
     if let Some(&id) = ids.get(&key) {
         return id;
     }

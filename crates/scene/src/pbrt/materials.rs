@@ -1,22 +1,34 @@
 //! Materials: `Material`, `MakeNamedMaterial`, `NamedMaterial` (and `Texture`, which is
-//! not supported yet). Only pbrt's `diffuse` with an `rgb reflectance` is supported now.
+//! not supported yet).
+//!
+//! Supported pbrt-v4 material types, with constant (untextured) parameters:
+//! - `diffuse`: `rgb reflectance` (default 0.5).
+//! - `conductor`: `eta` and `k` as `rgb` or as a named spectrum (`metal-Cu-eta`,
+//!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`super::spectra`]), default copper; or
+//!   `rgb reflectance` instead of both; `float roughness` or `uroughness`/`vroughness`
+//!   (default 0); `bool remaproughness` (default true).
+//! - `dielectric`: `float eta` or a named glass spectrum (`glass-BK7`, ...; its value at
+//!   550 nm), default 1.5; roughness as for `conductor`.
+//! - `thindielectric`: `eta` as for `dielectric`.
+//! - `diffusetransmission`: `rgb reflectance`, `rgb transmittance` (default 0.25 each),
+//!   `float scale` (default 1).
+//!
+//! `coateddiffuse`, `coatedconductor`, `mix`, `interface`, `hair`, `measured` and
+//! `subsurface` are reported as not supported yet.
 
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::MaterialDesc;
 
 use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
-use super::params::ParamSet;
+use super::params::{ParamSet, ParamType};
+use super::spectra::{glass_eta, metal_rgb, KNOWN_UNCONVERTED};
 use crate::error::{Location, SceneError};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
 const KNOWN_MATERIALS: &[&str] = &[
     "coateddiffuse",
     "coatedconductor",
-    "conductor",
-    "dielectric",
-    "thindielectric",
-    "diffusetransmission",
     "hair",
     "measured",
     "mix",
@@ -94,6 +106,72 @@ impl SceneBuilder {
                 self.warn_unused(params);
                 Ok(MaterialDesc::Diffuse { reflectance })
             }
+            "conductor" => {
+                let reflectance = spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
+                let eta = spectrum_param(params, "eta", SpectrumKind::MetalIndex)?;
+                let k = spectrum_param(params, "k", SpectrumKind::MetalIndex)?;
+                if reflectance.is_some() && (eta.is_some() || k.is_some()) {
+                    let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
+                    return Err(SceneError::invalid(
+                        p,
+                        format!(
+                            "{} has both \"reflectance\" and \"eta\"/\"k\"; give one or the other",
+                            params.owner
+                        ),
+                    ));
+                }
+                if let Some(r) = reflectance {
+                    check_unit_interval(params, "reflectance", r)?;
+                }
+                let (u_roughness, v_roughness) = roughness(params)?;
+                let remap_roughness = params.bool("remaproughness", true)?;
+                self.warn_unused(params);
+                Ok(MaterialDesc::Conductor {
+                    eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE)),
+                    k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK)),
+                    reflectance,
+                    u_roughness,
+                    v_roughness,
+                    remap_roughness,
+                })
+            }
+            "dielectric" => {
+                let eta = dielectric_eta(params)?;
+                let (u_roughness, v_roughness) = roughness(params)?;
+                let remap_roughness = params.bool("remaproughness", true)?;
+                self.warn_unused(params);
+                Ok(MaterialDesc::Dielectric {
+                    eta,
+                    u_roughness,
+                    v_roughness,
+                    remap_roughness,
+                })
+            }
+            "thindielectric" => {
+                let eta = dielectric_eta(params)?;
+                self.warn_unused(params);
+                Ok(MaterialDesc::ThinDielectric { eta })
+            }
+            "diffusetransmission" => {
+                let reflectance = params.rgb("reflectance", Rgb::splat(0.25))?;
+                let transmittance = params.rgb("transmittance", Rgb::splat(0.25))?;
+                check_unit_interval(params, "reflectance", reflectance)?;
+                check_unit_interval(params, "transmittance", transmittance)?;
+                let scale = params.float("scale", 1.0)?;
+                if scale < 0.0 {
+                    let p = params.get("scale").map_or(&params.loc, |p| &p.loc);
+                    return Err(SceneError::invalid(
+                        p,
+                        format!("\"scale\" of {} must not be negative", params.owner),
+                    ));
+                }
+                self.warn_unused(params);
+                Ok(MaterialDesc::DiffuseTransmission {
+                    reflectance,
+                    transmittance,
+                    scale,
+                })
+            }
             "" | "none" => Err(SceneError::unsupported(
                 loc,
                 format!("interface materials (material type \"{kind}\") are not supported yet{context}"),
@@ -108,4 +186,152 @@ impl SceneBuilder {
             )),
         }
     }
+}
+
+/// What a spectrum parameter describes, which decides the named spectra it accepts.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum SpectrumKind {
+    /// A reflectance: `rgb` only.
+    Albedo,
+    /// A metal's complex index: `rgb` or a named `metal-*` spectrum.
+    MetalIndex,
+}
+
+/// A colour parameter given as `rgb` or (for metal indices) a named spectrum; `None` when
+/// absent. Textures, blackbodies and spectra given as wavelength-value pairs are reported as
+/// not supported yet.
+fn spectrum_param(params: &ParamSet, name: &str, kind: SpectrumKind) -> Result<Option<Rgb>, SceneError> {
+    let forms = [
+        ParamType::Rgb,
+        ParamType::Spectrum,
+        ParamType::Blackbody,
+        ParamType::Texture,
+    ];
+    let Some(p) = params.lookup(name, &forms)? else {
+        return Ok(None);
+    };
+    let unsupported = |what: &str| {
+        Err(SceneError::unsupported(
+            &p.loc,
+            format!("\"{}\" of {} ({what}) is not supported yet", p.decl(), params.owner),
+        ))
+    };
+    match p.ty {
+        ParamType::Rgb => {
+            let v = p.floats();
+            if v.len() != 3 {
+                return Err(SceneError::syntax(
+                    &p.loc,
+                    format!("\"{}\" of {} needs exactly 3 values", p.decl(), params.owner),
+                ));
+            }
+            let rgb = Rgb::new(v[0], v[1], v[2]);
+            if v.iter().any(|c| *c < 0.0) {
+                return Err(SceneError::invalid(
+                    &p.loc,
+                    format!("\"{}\" of {} must not be negative", p.decl(), params.owner),
+                ));
+            }
+            Ok(Some(rgb))
+        }
+        ParamType::Spectrum if kind == SpectrumKind::MetalIndex => match p.strings() {
+            [named] => match metal_rgb(named) {
+                Some(rgb) => Ok(Some(rgb)),
+                None if KNOWN_UNCONVERTED.contains(&named.as_str()) => unsupported(&format!("named spectrum \"{named}\"")),
+                None => Err(SceneError::invalid(
+                    &p.loc,
+                    format!(
+                        "unknown named spectrum \"{named}\" for \"{}\" of {}; known: metal-Ag-eta, metal-Ag-k, metal-Al-eta, metal-Al-k, metal-Au-eta, metal-Au-k, metal-Cu-eta, metal-Cu-k",
+                        p.decl(),
+                        params.owner
+                    ),
+                )),
+            },
+            [] => unsupported("a spectrum given as wavelength-value pairs"),
+            _ => Err(SceneError::syntax(
+                &p.loc,
+                format!("\"{}\" of {} needs exactly one spectrum name", p.decl(), params.owner),
+            )),
+        },
+        ParamType::Spectrum => unsupported("a spectrum; give an rgb value"),
+        ParamType::Texture => unsupported("textures"),
+        _ => unsupported("a blackbody"),
+    }
+}
+
+/// `eta` of a dielectric: `float eta` or a named glass spectrum; default 1.5. pbrt treats
+/// an index of 0 as 1.
+fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
+    let Some(p) = params.lookup("eta", &[ParamType::Float, ParamType::Spectrum, ParamType::Texture])? else {
+        return Ok(1.5);
+    };
+    let eta = match p.ty {
+        ParamType::Float => params.float("eta", 1.5)?,
+        ParamType::Spectrum => match p.strings() {
+            [named] => glass_eta(named).ok_or_else(|| {
+                SceneError::invalid(
+                    &p.loc,
+                    format!(
+                        "unknown named spectrum \"{named}\" for \"{}\" of {}; known: glass-BK7, glass-BAF10, glass-FK51A, glass-LASF9, glass-F5, glass-F10, glass-F11",
+                        p.decl(),
+                        params.owner
+                    ),
+                )
+            })?,
+            _ => {
+                return Err(SceneError::unsupported(
+                    &p.loc,
+                    format!(
+                        "\"{}\" of {} (a spectrum given as wavelength-value pairs) is not supported yet; give a float or a named glass",
+                        p.decl(),
+                        params.owner
+                    ),
+                ))
+            }
+        },
+        _ => {
+            return Err(SceneError::unsupported(
+                &p.loc,
+                format!("\"{}\" of {} (textures) is not supported yet", p.decl(), params.owner),
+            ))
+        }
+    };
+    if !(eta >= 0.0 && eta.is_finite()) {
+        return Err(SceneError::invalid(
+            &p.loc,
+            format!("\"eta\" of {} must be a finite number > 0, found {eta}", params.owner),
+        ));
+    }
+    Ok(if eta == 0.0 { 1.0 } else { eta })
+}
+
+/// `uroughness` and `vroughness`, each defaulting to `roughness`, which defaults to 0.
+fn roughness(params: &ParamSet) -> Result<(f32, f32), SceneError> {
+    let r = params.float("roughness", 0.0)?;
+    let (u, v) = (params.float("uroughness", r)?, params.float("vroughness", r)?);
+    for (name, value) in [("roughness", r), ("uroughness", u), ("vroughness", v)] {
+        if value < 0.0 {
+            let p = params.get(name).map_or(&params.loc, |p| &p.loc);
+            return Err(SceneError::invalid(
+                p,
+                format!("\"{name}\" of {} must not be negative", params.owner),
+            ));
+        }
+    }
+    Ok((u, v))
+}
+
+/// Error unless every channel of `value` (the parameter `name`) is in [0, 1].
+fn check_unit_interval(params: &ParamSet, name: &str, value: Rgb) -> Result<(), SceneError> {
+    if value.to_array().iter().all(|c| (0.0..=1.0).contains(c)) {
+        return Ok(());
+    }
+    let p = params.get(name).map_or(&params.loc, |p| &p.loc);
+    Err(SceneError::invalid(
+        p,
+        format!(
+            "{name} ({} {} {}) of {} must be between 0 and 1",
+            value.r, value.g, value.b, params.owner
+        ),
+    ))
 }

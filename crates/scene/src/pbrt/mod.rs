@@ -30,6 +30,7 @@ mod options;
 mod params;
 mod parser;
 mod shapes;
+mod spectra;
 mod tokenizer;
 mod transform;
 
