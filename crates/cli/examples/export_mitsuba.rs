@@ -1,0 +1,104 @@
+//! Export the scene description mcrender loads from a pbrt-v4 file in a form that
+//! `bench/mitsuba_scene.py` turns into a Mitsuba 3 scene: OBJ meshes in world space, sphere
+//! and mesh emitters, diffuse and conductor materials, the camera. This lets an independent
+//! renderer render exactly what our loader understood, separating loader questions from
+//! light-transport questions.
+//!
+//! Usage: `cargo run --release --example export_mitsuba -- SCENE.pbrt OUT_DIR`
+#![allow(missing_docs)]
+
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use mcrender_core::math::Vec3;
+use mcrender_core::scene::{GeometryDesc, MaterialDesc};
+
+fn material_json(m: &MaterialDesc) -> Result<String> {
+    Ok(match m {
+        MaterialDesc::Diffuse { reflectance } => {
+            format!(r#"{{"type":"diffuse","reflectance":{:?}}}"#, reflectance.to_array())
+        }
+        MaterialDesc::Conductor {
+            eta,
+            k,
+            reflectance: None,
+            u_roughness,
+            v_roughness,
+            remap_roughness,
+        } => {
+            let alpha = |r: f32| if *remap_roughness { r.max(0.0).sqrt() } else { r };
+            format!(
+                r#"{{"type":"conductor","eta":{:?},"k":{:?},"alpha_u":{},"alpha_v":{}}}"#,
+                eta.to_array(),
+                k.to_array(),
+                alpha(*u_roughness),
+                alpha(*v_roughness)
+            )
+        }
+        other => bail!("no Mitsuba export for {other:?} yet"),
+    })
+}
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let [_, scene, out] = &args[..] else {
+        bail!("usage: export_mitsuba SCENE.pbrt OUT_DIR")
+    };
+    let loaded = mcrender_scene::pbrt::load_file(&PathBuf::from(scene)).map_err(anyhow::Error::new)?;
+    let d = &loaded.description;
+    let out = PathBuf::from(out);
+    std::fs::create_dir_all(&out)?;
+    let mut shapes = Vec::new();
+    for (i, s) in d.shapes.iter().enumerate() {
+        let material = material_json(&d.materials[s.material as usize])?;
+        let emitter = s.area_light.map_or("null".to_string(), |a| {
+            format!(
+                r#"{{"radiance":{:?},"two_sided":{}}}"#,
+                a.radiance.to_array(),
+                a.two_sided
+            )
+        });
+        let geometry = match &s.geometry {
+            GeometryDesc::TriangleMesh(m) => {
+                let path = out.join(format!("mesh{i}.obj"));
+                let mut f = std::io::BufWriter::new(std::fs::File::create(&path)?);
+                for p in &m.positions {
+                    writeln!(f, "v {} {} {}", p.x, p.y, p.z)?;
+                }
+                for t in m.indices.chunks(3) {
+                    writeln!(f, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+                }
+                format!(r#""kind":"mesh","file":{:?}"#, path.display().to_string())
+            }
+            GeometryDesc::Sphere {
+                radius,
+                world_from_object,
+            } => {
+                let c = world_from_object.point(Vec3::ZERO);
+                let scale = world_from_object.vector(Vec3::X).length();
+                format!(
+                    r#""kind":"sphere","center":{:?},"radius":{}"#,
+                    c.to_array(),
+                    scale * radius
+                )
+            }
+        };
+        shapes.push(format!(r#"{{{geometry},"material":{material},"emitter":{emitter}}}"#));
+    }
+    let mut json = String::new();
+    write!(
+        json,
+        r#"{{"width":{},"height":{},"fov":{},"max_depth":{},"world_from_camera":{:?},"shapes":[{}]}}"#,
+        d.film.width,
+        d.film.height,
+        d.camera.fov_degrees,
+        d.integrator.max_depth,
+        d.camera.world_from_camera.m.to_cols_array(),
+        shapes.join(",")
+    )?;
+    std::fs::write(out.join("scene.json"), json).context("cannot write scene.json")?;
+    eprintln!("wrote {} shapes to {}", shapes.len(), out.display());
+    Ok(())
+}
