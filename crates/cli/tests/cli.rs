@@ -1,26 +1,12 @@
 //! The `mcrender` binary as a user meets it: determinism across thread counts, clear
 //! errors with exit code 2 and no partial output for bad input, and the no-argument render.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn mcrender(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("mcrender runs")
-}
+use common::{mcrender, scene, stderr};
 
 fn cornell() -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes/cornell-box/scene-v4.pbrt")
-        .display()
-        .to_string()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    scene("cornell-box/scene-v4.pbrt")
 }
 
 #[test]

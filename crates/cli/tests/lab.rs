@@ -1,28 +1,9 @@
 //! The estimator lab's commands as a user runs them: `compare` (table, JSON, images),
 //! `bounces`, `rr-study`, and the estimator flags of `render`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn mcrender(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("mcrender runs")
-}
-
-fn scene(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(rel)
-        .display()
-        .to_string()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{mcrender, scene, stderr};
 
 /// The JSON report is consistent with itself (efficiency = 1 / (variance x time), relative
 /// efficiency = efficiency / best), and on the occluder scene the variances are ordered as
