@@ -1,9 +1,13 @@
 //! Layer 2: the film (per-pixel accumulators, per-pixel variance) and pixel filters.
 
 mod accumulator;
+mod compare;
 mod filter;
 mod statistics;
 
 pub use accumulator::{Film, PixelStats};
+pub use compare::{
+    block_means_of, downsample_box, pixel_rel_error, CompareError, ImageComparison, BLOCK_REL_EPSILON, DEFAULT_BLOCK,
+};
 pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
 pub use statistics::{FilmStatistics, REL_MSE_EPSILON};
