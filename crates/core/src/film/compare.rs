@@ -215,7 +215,7 @@ pub fn downsample_box(img: &[Rgb], width: u32, height: u32, factor: u32) -> Resu
             height,
         });
     }
-    if factor == 0 || width % factor != 0 || height % factor != 0 {
+    if factor == 0 || !width.is_multiple_of(factor) || !height.is_multiple_of(factor) {
         return Err(CompareError::BadFactor { width, height, factor });
     }
     let (w, h) = (width / factor, height / factor);
