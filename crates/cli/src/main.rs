@@ -4,6 +4,7 @@
 //! unwritable output), with a message on stderr naming what is wrong.
 
 mod builtin;
+mod diff_cmd;
 mod lab;
 mod pi_cmd;
 mod render_cmd;
@@ -32,6 +33,8 @@ enum Command {
     Bounces(study::bounces::BouncesArgs),
     /// Compare Russian roulette settings: time, mean radiance and error against a reference.
     RrStudy(study::rr_study::RrStudyArgs),
+    /// Compare an image with a reference: MSE, relative MSE, means, block-mean relative error.
+    Diff(diff_cmd::DiffArgs),
     /// Estimate pi from random points and show the variance falling as 1/N (the lecture's
     /// coconut).
     Pi(pi_cmd::PiArgs),
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => study::compare::run(&args),
         Some(Command::Bounces(args)) => study::bounces::run(&args),
         Some(Command::RrStudy(args)) => study::rr_study::run(&args),
+        Some(Command::Diff(args)) => diff_cmd::run(&args),
         Some(Command::Pi(args)) => pi_cmd::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
