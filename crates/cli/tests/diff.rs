@@ -2,19 +2,15 @@
 //! exit code 2 with a message on a size mismatch, downsampling of the reference, and a
 //! decodable error image.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
+
+use common::{mcrender, stderr};
 
 use mcrender_core::color::Rgb;
 use mcrender_scene::image_io::{write_image, ImageRgb};
-
-fn mcrender(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("mcrender runs")
-}
 
 fn write(dir: &Path, name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> Rgb) {
     let mut img = ImageRgb::new(w, h);
@@ -27,7 +23,7 @@ fn write(dir: &Path, name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> Rgb) {
 }
 
 fn json(o: &Output) -> serde_json::Value {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(o));
     serde_json::from_slice(&o.stdout).expect("valid JSON")
 }
 
@@ -86,7 +82,7 @@ fn size_mismatch_exits_2_with_message() {
     write(dir.path(), "b.exr", 8, 4, |_, _| Rgb::splat(1.0));
     let o = mcrender(&["diff", "a.exr", "b.exr"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    let e = String::from_utf8_lossy(&o.stderr);
+    let e = stderr(&o);
     assert!(
         e.contains("size mismatch") && e.contains("8x8") && e.contains("8x4"),
         "{e}"
@@ -94,7 +90,7 @@ fn size_mismatch_exits_2_with_message() {
     // A downsampling factor that does not divide the reference.
     let o = mcrender(&["diff", "a.exr", "b.exr", "--downsample-b", "3"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    let e = String::from_utf8_lossy(&o.stderr);
+    let e = stderr(&o);
     assert!(e.contains("divide"), "{e}");
 }
 
@@ -123,7 +119,7 @@ fn error_image_is_written_and_decodable() {
     });
     write(dir.path(), "b.exr", 8, 4, |_, _| Rgb::splat(1.0));
     let o = mcrender(&["diff", "a.exr", "b.exr", "--error-image", "err.png"], dir.path());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let img = image::open(dir.path().join("err.png"))
         .expect("decodable PNG")
         .to_rgb8();
