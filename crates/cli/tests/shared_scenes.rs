@@ -79,6 +79,9 @@ fn print(name: &str, c: &ImageComparison) {
 /// at 1024 then a 4x box, ours at 256), largest on blue where the values are smallest. We
 /// assert measured < expected + 0.008 (the excess with a ~1.7x margin): a 2% bias spread
 /// over the image would add ~0.02 and fail. Per-channel means agree to 0.11% (bound 2%).
+/// The block maximum (~0.9) is not bounded: it sits on the rim of the ceiling light, where
+/// the pixel filters differ across an edge of enormous contrast (see `mcrender diff
+/// --error-image`).
 #[test]
 fn cornell_box_matches_tungsten() {
     let Some(dir) = scenes_dir() else { return };
