@@ -9,6 +9,7 @@ mod hash;
 mod mis;
 mod rng;
 mod sampler;
+mod scramble;
 mod warp;
 
 pub use distribution::PiecewiseConstant1D;
@@ -16,7 +17,8 @@ pub use distribution_2d::PiecewiseConstant2D;
 pub use hash::{hash_u64s, mix_bits};
 pub use mis::{balance_heuristic, power_heuristic};
 pub use rng::Pcg32;
-pub use sampler::{IndependentSampler, Sampler};
+pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, StratifiedSampler};
+pub use scramble::{nested_uniform_scramble, permutation_element};
 pub use warp::*;
 
 /// The largest `f32` below 1: the upper end of every sample value.
