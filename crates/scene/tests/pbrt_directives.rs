@@ -6,7 +6,7 @@ use std::path::Path;
 use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Vec2, Vec3};
 use mcrender_core::scene::{
-    AreaLightDesc, FilterDesc, GeometryDesc, LightDesc, MaterialDesc, ShapeDesc, TriangleMeshDesc,
+    AreaLightDesc, FilterDesc, GeometryDesc, LightDesc, MaterialDesc, SamplerKind, ShapeDesc, TriangleMeshDesc,
 };
 use mcrender_scene::pbrt::{load_str, LoadedScene};
 
@@ -14,6 +14,14 @@ fn load(src: &str) -> LoadedScene {
     match load_str(src, "scene.pbrt", Path::new("")) {
         Ok(s) => s,
         Err(e) => panic!("{e}"),
+    }
+}
+
+/// The error message of a scene that must fail to load.
+fn load_err(src: &str) -> String {
+    match load_str(src, "scene.pbrt", Path::new("")) {
+        Ok(_) => panic!("loaded: {src}"),
+        Err(e) => e.to_string(),
     }
 }
 
@@ -300,13 +308,56 @@ fn filter_defaults_and_fallbacks() {
 }
 
 #[test]
-fn samplers_map_to_independent_with_warnings() {
+fn samplers_map_to_their_kinds_without_warnings() {
     let s = load("Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 5\nOption \"seed\" 9\nWorldBegin");
     assert_eq!(s.description.sampler.samples_per_pixel, 15);
     assert_eq!(s.description.sampler.seed, 9);
-    assert!(s.warnings[0].ends_with("warning: sampler \"stratified\" is not implemented yet; using \"independent\""));
+    assert_eq!(
+        s.description.sampler.kind,
+        SamplerKind::Stratified {
+            x_samples: 3,
+            y_samples: 5,
+            jitter: true
+        }
+    );
+    assert!(s.warnings.iter().all(|w| !w.contains("sampler")), "{:?}", s.warnings);
+    let s = load("Sampler \"stratified\" \"bool jitter\" false\nWorldBegin");
+    assert_eq!(s.description.sampler.samples_per_pixel, 16);
+    assert_eq!(
+        s.description.sampler.kind,
+        SamplerKind::Stratified {
+            x_samples: 4,
+            y_samples: 4,
+            jitter: false
+        }
+    );
+    for name in ["sobol", "zsobol", "halton", "pmj02bn", "paddedsobol"] {
+        let s = load(&format!(
+            "Sampler \"{name}\" \"integer pixelsamples\" 32 \"string randomization\" \"owen\"\nWorldBegin"
+        ));
+        assert_eq!(s.description.sampler.kind, SamplerKind::OwenSobol, "{name}");
+        assert_eq!(s.description.sampler.samples_per_pixel, 32);
+        assert!(
+            s.warnings.iter().all(|w| !w.contains("sampler")),
+            "{name}: {:?}",
+            s.warnings
+        );
+    }
     let s = load("Sampler \"independent\"\nWorldBegin");
+    assert_eq!(s.description.sampler.kind, SamplerKind::Independent);
     assert!(s.warnings.iter().all(|w| !w.contains("sampler")));
+}
+
+#[test]
+fn sampler_errors_name_the_problem() {
+    let e = load_err("Sampler \"sobol\" \"string randomization\" \"scrambled\"\nWorldBegin");
+    assert!(e.contains("expected a randomization"), "{e}");
+    let e = load_err("Sampler \"stratified\" \"integer xsamples\" 0\nWorldBegin");
+    assert!(e.contains("xsamples and ysamples must be at least 1"), "{e}");
+    let e = load_err("Sampler \"zsobol\" \"integer pixelsamples\" 0\nWorldBegin");
+    assert!(e.contains("must be at least 1"), "{e}");
+    let e = load_err("Sampler \"magic\"\nWorldBegin");
+    assert!(e.contains("unknown sampler \"magic\""), "{e}");
 }
 
 #[test]

@@ -170,17 +170,32 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// `Sampler "..."`: every pbrt sampler is accepted and renders with the independent
-    /// sampler for now (with a warning for the others).
+    /// `Sampler "..."`: `independent`; `stratified` (`xsamples`, `ysamples`, `jitter`); and
+    /// `sobol`, `zsobol`, `halton`, `pmj02bn`, `paddedsobol`, which all use the Owen-scrambled
+    /// Sobol' sampler (their `randomization` is accepted; the points are always Owen-scrambled).
     pub fn sampler(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Sampler", loc)?;
-        let spp = match kind {
+        let (sampler_kind, spp) = match kind {
             "independent" | "sobol" | "zsobol" | "halton" | "pmj02bn" | "paddedsobol" => {
                 let spp = params.int("pixelsamples", 16)?;
                 if spp <= 0 {
                     return Err(param_error(params, "pixelsamples", "must be at least 1"));
                 }
-                spp
+                if kind == "independent" {
+                    (SamplerKind::Independent, spp)
+                } else {
+                    if let Some((name, loc)) = params.string("randomization")? {
+                        if !matches!(name.as_str(), "owen" | "fastowen" | "permutedigits" | "none") {
+                            return Err(SceneError::invalid(
+                                &loc,
+                                format!(
+                                    "expected a randomization (owen, fastowen, permutedigits, none), found \"{name}\""
+                                ),
+                            ));
+                        }
+                    }
+                    (SamplerKind::OwenSobol, spp)
+                }
             }
             "stratified" => {
                 // pbrt's stratified sampler takes xsamples * ysamples samples per pixel.
@@ -189,17 +204,18 @@ impl SceneBuilder {
                 if x <= 0 || y <= 0 {
                     return Err(SceneError::invalid(loc, "xsamples and ysamples must be at least 1"));
                 }
-                x.checked_mul(y)
-                    .ok_or_else(|| SceneError::invalid(loc, "xsamples * ysamples is too large"))?
+                let spp = x
+                    .checked_mul(y)
+                    .ok_or_else(|| SceneError::invalid(loc, "xsamples * ysamples is too large"))?;
+                let kind = SamplerKind::Stratified {
+                    x_samples: x as u32,
+                    y_samples: y as u32,
+                    jitter: params.bool("jitter", true)?,
+                };
+                (kind, spp)
             }
             _ => return Err(SceneError::syntax(loc, format!("unknown sampler \"{kind}\""))),
         };
-        if kind != "independent" {
-            self.warn(
-                loc,
-                format!("sampler \"{kind}\" is not implemented yet; using \"independent\""),
-            );
-        }
         if let Some(p) = params.ints("seed")? {
             p.mark_used();
             let [seed] = p.ints()[..] else {
@@ -209,7 +225,7 @@ impl SceneBuilder {
         } else {
             self.sampler_seed = None;
         }
-        self.sampler.kind = SamplerKind::Independent;
+        self.sampler.kind = sampler_kind;
         self.sampler.samples_per_pixel = spp as u32;
         self.warn_unused(params);
         Ok(())
