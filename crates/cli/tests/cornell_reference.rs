@@ -19,7 +19,7 @@
 use std::path::PathBuf;
 
 use mcrender_core::render::{render, RenderOptions};
-use mcrender_core::scene::Scene;
+use mcrender_core::scene::{SamplerKind, Scene};
 use mcrender_scene::image_io::read_exr;
 use mcrender_scene::pbrt::load_file;
 
@@ -39,6 +39,12 @@ fn cornell_box_matches_mitsuba_reference() {
     desc.film.height = RES;
     desc.sampler.samples_per_pixel = SPP;
     desc.sampler.seed = 7;
+    // The tolerance comes from the samples' own spread, which estimates the error of the
+    // mean only for independent samples. The file asks for "sobol", whose scrambled points
+    // are correlated by design: there the spread overstates the error (measured: mean z^2
+    // 0.60, median |z| 0.50, image means still within 0.012%), so this test pins the
+    // independent sampler.
+    desc.sampler.kind = SamplerKind::Independent;
     desc.integrator.max_depth = 65; // as the reference
     let scene = Scene::build(&desc).expect("scene builds");
     let out = render(&scene, &RenderOptions::default(), &|_, _| {}).expect("render");

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 use clap::Args;
 use mcrender_core::film::FilmStatistics;
-use mcrender_core::scene::DirectStrategy;
+use mcrender_core::scene::{DirectStrategy, SamplerKind};
 
 use super::{film_image, load_reference, render_in_waves, write_into};
 use crate::lab::plot::convergence_plot;
@@ -60,6 +60,14 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         None => None,
     };
     let spp = base.sampler.samples_per_pixel;
+    if base.sampler.kind != SamplerKind::Independent {
+        eprintln!(
+            "mcrender: compare: warning: the variance column is estimated from the spread of each pixel's samples, \
+             which measures the error only for independent samples; this scene's sampler ({:?}) correlates them, \
+             so the column overstates the error (pass --reference for the measured error, or use Sampler \"independent\")",
+            base.sampler.kind
+        );
+    }
 
     let mut rows = Vec::new();
     let mut images = Vec::new();
