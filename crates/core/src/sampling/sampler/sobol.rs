@@ -137,13 +137,10 @@ const fn sobol_matrices() -> [[u32; 32]; SOBOL_DIMENSIONS] {
 pub fn sobol_u32(mut index: u32, dim: usize) -> u32 {
     let matrix = &SOBOL_MATRICES[dim];
     let mut x = 0;
-    let mut j = 0;
+    // Visit only the set bits of the index (scrambled indices use all 32 bits).
     while index != 0 {
-        if index & 1 == 1 {
-            x ^= matrix[j];
-        }
-        index >>= 1;
-        j += 1;
+        x ^= matrix[index.trailing_zeros() as usize];
+        index &= index - 1;
     }
     x
 }
