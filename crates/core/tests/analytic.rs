@@ -116,3 +116,18 @@ fn irradiance_under_a_sphere_light_matches_the_closed_form() {
     let e = PI * l * (r / dist) * (r / dist);
     assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
 }
+
+/// A disk light of radius R at height h on the receiver's axis, facing down:
+/// E = pi L R^2 / (R^2 + h^2).
+#[test]
+fn irradiance_under_a_disk_light_matches_the_closed_form() {
+    let (r, h, l, rho) = (0.6f32, 0.9f32, 2.5f32, 0.8f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_disk_light(&mut d, r, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 4096;
+    let e = PI * l * r * r / (r * r + h * h);
+    assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
+}

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use super::*;
 use crate::math::{Mat4, Ray, Transform, PI};
 use crate::sampling::chi2::{suite_seed, Chi2Test, SphereGrid, SIGNIFICANCE};
-use crate::shape::{Shape, Sphere, Triangle, TriangleMesh};
+use crate::shape::{Disk, Shape, Sphere, Triangle, TriangleMesh};
 
 fn check_light(light: &DiffuseAreaLight, receiver: Vec3, label: &str) {
     let recv = Interaction::point(receiver);
@@ -77,6 +77,33 @@ fn scaled_sphere_light_sampling_matches_its_solid_angle_pdf() {
         two_sided: false,
     };
     check_light(&light, Vec3::new(0.6, 0.1, 2.2), "scaled sphere");
+}
+
+/// A tilted, non-uniformly scaled disk seen from its emitting side.
+#[test]
+fn disk_light_sampling_matches_its_solid_angle_pdf() {
+    let m = Mat4::from_translation(Vec3::new(0.2, 0.1, 1.0))
+        * Mat4::from_rotation_y(0.4)
+        * Mat4::from_scale(Vec3::new(1.3, 0.7, 1.0));
+    // Flipped: the normal points to world -z-ish, towards the receiver below.
+    let light = DiffuseAreaLight {
+        shape: Shape::Disk(Disk::new(0.0, 1.0, 0.0, 2.0 * PI, Transform::new(m).unwrap(), true)),
+        radiance: Rgb::WHITE,
+        two_sided: false,
+    };
+    check_light(&light, Vec3::new(0.3, -0.2, 0.2), "disk");
+}
+
+/// An annulus sector: the sampler must stay on the surface that is intersected.
+#[test]
+fn annulus_sector_light_sampling_matches_its_solid_angle_pdf() {
+    let m = Mat4::from_translation(Vec3::new(0.0, 0.0, 0.8));
+    let light = DiffuseAreaLight {
+        shape: Shape::Disk(Disk::new(0.1, 1.2, 0.4, 1.25 * PI, Transform::new(m).unwrap(), false)),
+        radiance: Rgb::WHITE,
+        two_sided: true,
+    };
+    check_light(&light, Vec3::new(0.1, 0.2, 0.0), "annulus sector");
 }
 
 /// `E[1 / pdf_area]` over area samples is the surface area. For an ellipsoid the area has

@@ -13,7 +13,7 @@ use crate::light::{
     UniformInfiniteLight,
 };
 use crate::material::Material;
-use crate::shape::{Shape, Sphere, Triangle, TriangleMesh};
+use crate::shape::{Disk, Shape, Sphere, Triangle, TriangleMesh};
 
 /// Largest image side accepted.
 pub const MAX_RESOLUTION: u32 = 32_768;
@@ -210,6 +210,31 @@ impl SceneDescription {
                     }
                     check_finite("sphere transform", &world_from_object.m.to_cols_array())?;
                 }
+                GeometryDesc::Disk {
+                    height,
+                    radius,
+                    inner_radius,
+                    phi_max,
+                    world_from_object,
+                } => {
+                    let what = format!("disk (shape {i})");
+                    if !(*radius > 0.0 && radius.is_finite() && height.is_finite()) {
+                        return Err(invalid(
+                            what,
+                            format!("expected a finite height and radius > 0, found {height} and {radius}"),
+                        ));
+                    }
+                    if !(*inner_radius >= 0.0 && inner_radius < radius) {
+                        return Err(invalid(
+                            what,
+                            format!("expected 0 <= inner radius < radius, found {inner_radius} and {radius}"),
+                        ));
+                    }
+                    if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
+                        return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
+                    }
+                    check_finite("disk transform", &world_from_object.m.to_cols_array())?;
+                }
             }
         }
         for (i, l) in self.lights.iter().enumerate() {
@@ -341,6 +366,20 @@ impl Scene {
                 } => {
                     vec![Shape::Sphere(Sphere::new(*radius, *world_from_object, s.flip_normals))]
                 }
+                GeometryDesc::Disk {
+                    height,
+                    radius,
+                    inner_radius,
+                    phi_max,
+                    world_from_object,
+                } => vec![Shape::Disk(Disk::new(
+                    *height,
+                    *radius,
+                    *inner_radius,
+                    *phi_max,
+                    *world_from_object,
+                    s.flip_normals,
+                ))],
             };
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {

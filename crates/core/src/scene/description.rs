@@ -353,6 +353,20 @@ pub enum GeometryDesc {
         /// World-from-object transform.
         world_from_object: Transform,
     },
+    /// A disk in the plane `z = height` of its object space, centred on the z axis, with an
+    /// optional hole and an angular extent (pbrt-v4 `disk`). Its normal is object-space `+z`.
+    Disk {
+        /// Height of the plane.
+        height: f32,
+        /// Outer radius.
+        radius: f32,
+        /// Inner radius (0 = no hole).
+        inner_radius: f32,
+        /// Angular extent in radians, in `(0, 2 pi]`.
+        phi_max: f32,
+        /// World-from-object transform.
+        world_from_object: Transform,
+    },
 }
 
 /// A triangle mesh in world space.

@@ -1,11 +1,13 @@
 //! Layer 2: shapes. Ray intersection with error-bounded hit points, surface interactions,
 //! and uniform-area sampling for area lights.
 
+mod disk;
 mod interaction;
 mod mesh;
 mod sphere;
 mod triangle;
 
+pub use disk::Disk;
 pub use interaction::{Interaction, SurfaceInteraction};
 pub use mesh::TriangleMesh;
 pub use sphere::Sphere;
@@ -28,7 +30,7 @@ pub struct ShapeSample {
 pub struct ShapeHit {
     /// Ray parameter of the hit.
     pub t: f32,
-    /// Barycentrics (triangles) or the object-space hit point (spheres).
+    /// Barycentrics (triangles) or the object-space hit point (spheres, disks).
     pub data: [f32; 3],
 }
 
@@ -39,6 +41,8 @@ pub enum Shape {
     Triangle(Triangle),
     /// A sphere.
     Sphere(Sphere),
+    /// A disk, annulus or sector.
+    Disk(Disk),
 }
 
 /// Forward a method call to the variant.
@@ -47,6 +51,7 @@ macro_rules! dispatch {
         match $self {
             Shape::Triangle($s) => $e,
             Shape::Sphere($s) => $e,
+            Shape::Disk($s) => $e,
         }
     };
 }

@@ -117,6 +117,30 @@ pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) 
     });
 }
 
+/// A disk of radius `r` at height `h` above the origin, emitting `l` downwards: object
+/// space `z` is mapped to world `-y` by a rotation, as a pbrt scene would place it.
+pub fn add_disk_light(d: &mut SceneDescription, r: f32, h: f32, l: Rgb) {
+    d.shapes.push(ShapeDesc {
+        geometry: GeometryDesc::Disk {
+            height: 0.0,
+            radius: r,
+            inner_radius: 0.0,
+            phi_max: 2.0 * std::f32::consts::PI,
+            world_from_object: Transform::new(
+                Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2),
+            )
+            .unwrap(),
+        },
+        material: 0,
+        area_light: Some(AreaLightDesc {
+            radiance: l,
+            two_sided: false,
+            power: None,
+        }),
+        flip_normals: false,
+    });
+}
+
 /// A camera low beside the receiver, looking at its centre with a tiny field of view, so
 /// every pixel sees (nearly) the receiver's centre.
 pub fn aim_at_receiver(d: &mut SceneDescription) {
