@@ -71,6 +71,65 @@ fn transform_replaces_and_concat_transform_multiplies() {
 }
 
 #[test]
+fn disk_parameters_and_defaults() {
+    let s = load(
+        "WorldBegin\nTranslate 0 0 1\nShape \"disk\"\nShape \"disk\" \"float height\" 2 \"float radius\" 3 \
+         \"float innerradius\" 1 \"float phimax\" 90",
+    );
+    let disk = |i: usize| match &s.description.shapes[i].geometry {
+        GeometryDesc::Disk {
+            height,
+            radius,
+            inner_radius,
+            phi_max,
+            world_from_object,
+        } => (*height, *radius, *inner_radius, *phi_max, world_from_object.m),
+        other => panic!("not a disk: {other:?}"),
+    };
+    let translate = Mat4::from_translation(Vec3::Z);
+    assert_eq!(disk(0), (0.0, 1.0, 0.0, std::f32::consts::TAU, translate));
+    assert_eq!(disk(1), (2.0, 3.0, 1.0, std::f32::consts::FRAC_PI_2, translate));
+    assert!(!s.description.shapes[0].flip_normals);
+}
+
+/// A planar patch becomes two triangles over its four corners, facing pbrt-v4's
+/// `dpdu x dpdv`, with the patch's (u, v) at the corners when no `uv` is given.
+#[test]
+fn planar_bilinear_patches_split_into_triangles() {
+    let s = load(
+        "WorldBegin\nTranslate 0 0 2\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  2 0 0  0 1 0  2 1 0  4 0 0  4 1 0] \
+         \"integer indices\" [0 1 2 3  1 4 3 5]",
+    );
+    let m = mesh(&s.description.shapes[0]);
+    assert_eq!(m.indices.len(), 12);
+    assert_eq!(
+        m.positions.len(),
+        8,
+        "each patch gets its own corners for its default uvs"
+    );
+    let uvs = m.uvs.as_ref().unwrap();
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|j| m.positions[t[j] as usize]);
+        let n = (b - a).cross(c - a);
+        assert!(n.z > 0.0 && n.x == 0.0 && n.y == 0.0, "triangle normal {n}");
+        for &i in t {
+            assert_eq!(m.positions[i as usize].z, 2.0);
+        }
+    }
+    // (u, v) at a vertex: x along the patch's u edge, y along v.
+    for (i, p) in m.positions.iter().enumerate().take(4) {
+        assert!(close(uvs[i].extend(0.0), Vec3::new(p.x / 2.0, p.y, 0.0)));
+    }
+    // With uvs given, vertices stay shared.
+    let s = load(
+        "WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0] \
+         \"point2 uv\" [0 0 1 0 0 1 1 1]",
+    );
+    let m = mesh(&s.description.shapes[0]);
+    assert_eq!((m.positions.len(), m.indices.clone()), (4, vec![0, 1, 3, 0, 3, 2]));
+}
+
+#[test]
 fn look_at_sets_the_camera() {
     let s = load("LookAt 0 1 6.8  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 30 \"float lensradius\" 0.1 \"float focaldistance\" 5\nWorldBegin");
     let cam = &s.description.camera;

@@ -69,10 +69,48 @@ fn unknown_and_unsupported_shapes() {
         "scene.pbrt:2:1: unknown shape \"cube\""
     );
     assert_eq!(
-        error("WorldBegin\nShape \"disk\""),
-        "scene.pbrt:2:1: shape \"disk\" is not supported yet"
+        error("WorldBegin\nShape \"cylinder\""),
+        "scene.pbrt:2:1: shape \"cylinder\" is not supported yet"
     );
     assert_eq!(kind("WorldBegin\nShape \"curve\""), SceneErrorKind::Unsupported);
+}
+
+#[test]
+fn malformed_disks() {
+    assert_eq!(
+        error("WorldBegin\nShape \"disk\" \"float radius\" -1"),
+        "scene.pbrt:2:14: disk radius must be positive, found -1"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"disk\" \"float radius\" 1 \"float innerradius\" 2"),
+        "scene.pbrt:2:31: disk innerradius must be in [0, radius = 1), found 2"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"disk\" \"float phimax\" 0"),
+        "scene.pbrt:2:14: disk phimax must be positive"
+    );
+}
+
+#[test]
+fn curved_and_malformed_bilinear_patches() {
+    assert_eq!(
+        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1]"),
+        "scene.pbrt:2:1: non-planar bilinear patches are not supported yet (patch 0 is curved)"
+    );
+    assert_eq!(
+        kind("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1]"),
+        SceneErrorKind::Unsupported
+    );
+    assert_eq!(
+        error(
+            "WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0] \"integer indices\" [0 1 2]"
+        ),
+        "scene.pbrt:2:62: \"integer indices\" needs a non-zero multiple of 4 values, found 3"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0]"),
+        "scene.pbrt:2:1: Shape \"bilinearmesh\" needs \"integer indices\" (P has 3 points, not 4)"
+    );
 }
 
 #[test]

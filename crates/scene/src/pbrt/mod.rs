@@ -11,7 +11,7 @@
 //! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, every
 //! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
 //! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
-//! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`,
+//! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
 //! `Include`/`Import`, `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials,
 //! textures, lights, shapes, media, instancing and motion blur are errors naming the feature.
 //!

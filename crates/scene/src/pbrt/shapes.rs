@@ -1,6 +1,7 @@
-//! Shapes: `trianglemesh`, `plymesh` and `sphere`. Meshes are moved to world space here
-//! (points by the CTM, normals by its inverse transpose, negated under
-//! `ReverseOrientation` as pbrt does, then normalised); spheres keep their transform.
+//! Shapes: `trianglemesh`, `plymesh`, `sphere`, `disk` and (planar) `bilinearmesh`. Meshes are moved to world space
+//! here (points by the CTM, normals by its inverse transpose, negated under
+//! `ReverseOrientation` as pbrt does, then normalised); spheres and disks keep their
+//! transform.
 
 use glam::{Vec2, Vec3};
 use mcrender_core::math::Transform;
@@ -24,8 +25,8 @@ impl SceneBuilder {
     pub fn shape(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("Shape", loc)?;
         match kind {
-            "trianglemesh" | "plymesh" | "sphere" => {}
-            "disk" | "cylinder" | "bilinearmesh" | "loopsubdiv" | "curve" => {
+            "trianglemesh" | "plymesh" | "sphere" | "disk" | "bilinearmesh" => {}
+            "cylinder" | "loopsubdiv" | "curve" => {
                 return Err(SceneError::unsupported(
                     loc,
                     format!("shape \"{kind}\" is not supported yet"),
@@ -38,8 +39,12 @@ impl SceneBuilder {
         let reverse = self.state.reverse_orientation;
         let geometry = match kind {
             "trianglemesh" => {
-                let mesh = self.triangle_mesh_params(params, loc)?;
+                let mesh = self.mesh_params(kind, 3, params, loc)?;
                 to_world(mesh, &world_from_object, reverse, loc)?
+            }
+            "bilinearmesh" => {
+                let mesh = self.mesh_params(kind, 4, params, loc)?;
+                to_world(split_planar_patches(mesh, loc)?, &world_from_object, reverse, loc)?
             }
             "plymesh" => {
                 let Some(mesh) = self.ply_mesh(params, loc)? else {
@@ -48,6 +53,7 @@ impl SceneBuilder {
                 };
                 to_world(mesh, &world_from_object, reverse, loc)?
             }
+            "disk" => disk(params, world_from_object)?,
             _ => self.sphere(params, world_from_object)?,
         };
         for name in ["alpha", "displacement", "emissionfilename"] {
@@ -75,21 +81,29 @@ impl SceneBuilder {
         Ok(())
     }
 
-    fn triangle_mesh_params(&mut self, params: &ParamSet, loc: &Location) -> Result<ObjectMesh, SceneError> {
+    /// `P`, `indices` (`per_face` a face), `N` and `uv` of a `trianglemesh` (3) or a
+    /// `bilinearmesh` (4).
+    fn mesh_params(
+        &mut self,
+        kind: &str,
+        per_face: usize,
+        params: &ParamSet,
+        loc: &Location,
+    ) -> Result<ObjectMesh, SceneError> {
         let Some((positions, _)) = params.point3s("P")? else {
             return Err(SceneError::syntax(
                 loc,
-                "Shape \"trianglemesh\" needs a \"point3 P\" parameter",
+                format!("Shape \"{kind}\" needs a \"point3 P\" parameter"),
             ));
         };
         let n = positions.len();
         let indices: Vec<u32> = match params.ints("indices")? {
             Some(p) => {
-                if p.ints().is_empty() || p.ints().len() % 3 != 0 {
+                if p.ints().is_empty() || p.ints().len() % per_face != 0 {
                     return Err(SceneError::invalid(
                         &p.loc,
                         format!(
-                            "\"integer indices\" needs a non-zero multiple of 3 values, found {}",
+                            "\"integer indices\" needs a non-zero multiple of {per_face} values, found {}",
                             p.ints().len()
                         ),
                     ));
@@ -110,11 +124,11 @@ impl SceneBuilder {
                     })
                     .collect::<Result<_, _>>()?
             }
-            None if n == 3 => vec![0, 1, 2],
+            None if n == per_face => (0..n as u32).collect(),
             None => {
                 return Err(SceneError::syntax(
                     loc,
-                    format!("Shape \"trianglemesh\" needs \"integer indices\" (P has {n} points, not 3)"),
+                    format!("Shape \"{kind}\" needs \"integer indices\" (P has {n} points, not {per_face})"),
                 ))
             }
         };
@@ -232,6 +246,99 @@ impl SceneBuilder {
             world_from_object,
         })
     }
+}
+
+/// `Shape "disk"`: `height` (0), `radius` (1), `innerradius` (0), `phimax` (360 degrees).
+fn disk(params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc, SceneError> {
+    let at = |name: &str| params.get(name).map_or(&params.loc, |p| &p.loc).clone();
+    let height = params.float("height", 0.0)?;
+    let radius = params.float("radius", 1.0)?;
+    let inner_radius = params.float("innerradius", 0.0)?;
+    let phi_max = params.float("phimax", 360.0)?;
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Err(SceneError::invalid(
+            &at("radius"),
+            format!("disk radius must be positive, found {radius}"),
+        ));
+    }
+    if !(inner_radius >= 0.0 && inner_radius < radius) {
+        return Err(SceneError::invalid(
+            &at("innerradius"),
+            format!("disk innerradius must be in [0, radius = {radius}), found {inner_radius}"),
+        ));
+    }
+    if !height.is_finite() {
+        return Err(SceneError::invalid(&at("height"), "disk height must be finite"));
+    }
+    // pbrt-v4 clamps phimax to [0, 360].
+    let phi_max = phi_max.clamp(0.0, 360.0);
+    if phi_max <= 0.0 {
+        return Err(SceneError::invalid(
+            &at("phimax"),
+            "disk phimax must be positive".to_string(),
+        ));
+    }
+    Ok(GeometryDesc::Disk {
+        height,
+        radius,
+        inner_radius,
+        phi_max: phi_max.to_radians(),
+        world_from_object,
+    })
+}
+
+/// Relative tolerance of the planarity test of bilinear patches: the volume spanned by the
+/// patch's edges from one corner, against the cube of its longest edge or diagonal.
+const PLANAR_TOLERANCE: f32 = 1e-4;
+
+/// Split each bilinear patch `p00, p10, p01, p11` (pbrt-v4's vertex order) into the triangles
+/// `p00 p10 p11` and `p00 p11 p01`, whose normals are pbrt-v4's `dpdu x dpdv`. Only planar
+/// patches can be split exactly; curved ones are an error until real bilinear patch
+/// intersection exists. Without `uv`, each patch gets its own four vertices with pbrt-v4's
+/// default (u, v) at the corners (exact for parallelograms, affine per triangle otherwise).
+fn split_planar_patches(mesh: ObjectMesh, loc: &Location) -> Result<ObjectMesh, SceneError> {
+    let p = &mesh.positions;
+    for (k, q) in mesh.indices.chunks_exact(4).enumerate() {
+        let [p00, p10, p01, p11] = [0, 1, 2, 3].map(|j| p[q[j] as usize]);
+        let (e1, e2, e3) = (p10 - p00, p01 - p00, p11 - p00);
+        let size = [e1, e2, e3, p11 - p10, p11 - p01, p10 - p01]
+            .iter()
+            .map(|e| e.length())
+            .fold(0.0f32, f32::max);
+        let volume = e1.cross(e2).dot(e3).abs();
+        if volume > PLANAR_TOLERANCE * size * size * size {
+            return Err(SceneError::unsupported(
+                loc,
+                format!("non-planar bilinear patches are not supported yet (patch {k} is curved)"),
+            ));
+        }
+    }
+    let tri = |q: &[u32]| [q[0], q[1], q[3], q[0], q[3], q[2]];
+    if mesh.uvs.is_some() {
+        let indices = mesh.indices.chunks_exact(4).flat_map(tri).collect();
+        return Ok(ObjectMesh { indices, ..mesh });
+    }
+    let mut out = ObjectMesh {
+        positions: Vec::with_capacity(mesh.indices.len()),
+        indices: Vec::with_capacity(mesh.indices.len() / 4 * 6),
+        normals: mesh.normals.as_ref().map(|_| Vec::with_capacity(mesh.indices.len())),
+        uvs: Some(Vec::with_capacity(mesh.indices.len())),
+    };
+    let corners = [Vec2::ZERO, Vec2::X, Vec2::Y, Vec2::ONE];
+    for q in mesh.indices.chunks_exact(4) {
+        let base = out.positions.len() as u32;
+        for (j, &i) in q.iter().enumerate() {
+            out.positions.push(p[i as usize]);
+            if let (Some(dst), Some(src)) = (&mut out.normals, &mesh.normals) {
+                dst.push(src[i as usize]);
+            }
+            if let Some(uvs) = &mut out.uvs {
+                uvs.push(corners[j]);
+            }
+        }
+        out.indices.extend(tri(&[base, base + 1, base + 2, base + 3]));
+    }
+    Ok(out)
 }
 
 fn check_count(found: usize, expected: usize, decl: &str, loc: &Location) -> Result<(), SceneError> {
