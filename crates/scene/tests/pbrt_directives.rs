@@ -129,6 +129,48 @@ fn planar_bilinear_patches_split_into_triangles() {
     assert_eq!((m.positions.len(), m.indices.clone()), (4, vec![0, 1, 3, 0, 3, 2]));
 }
 
+/// Shapes inside `ObjectBegin`/`ObjectEnd` keep the CTM of their definition and go to the
+/// object; each `ObjectInstance` adds a placement with the CTM at that point. The
+/// definition's attribute scope closes with `ObjectEnd`.
+#[test]
+fn object_instancing_defines_once_and_places_many_times() {
+    let s = load(
+        "WorldBegin\nObjectBegin \"thing\"\n  Translate 1 0 0\n  Material \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\n  \
+         Shape \"sphere\"\n  Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0]\nObjectEnd\n\
+         Shape \"sphere\"\nObjectInstance \"thing\"\nTranslate 0 5 0\nObjectInstance \"thing\"",
+    );
+    let d = &s.description;
+    assert_eq!(d.shapes.len(), 1);
+    assert_eq!(sphere_matrix(&s, 0), Mat4::IDENTITY, "ObjectEnd restores the CTM");
+    assert_eq!(d.objects.len(), 1);
+    let o = &d.objects[0];
+    assert_eq!(o.shapes.len(), 2);
+    match &o.shapes[0].geometry {
+        GeometryDesc::Sphere { world_from_object, .. } => {
+            assert_eq!(world_from_object.m, Mat4::from_translation(Vec3::X));
+        }
+        other => panic!("not a sphere: {other:?}"),
+    }
+    assert_eq!(mesh(&o.shapes[1]).positions[0], Vec3::X);
+    assert_eq!(
+        d.materials[o.shapes[0].material as usize],
+        MaterialDesc::Diffuse {
+            reflectance: Rgb::new(0.1, 0.2, 0.3)
+        }
+    );
+    assert_ne!(
+        d.shapes[0].material, o.shapes[0].material,
+        "ObjectEnd restores the material"
+    );
+    assert_eq!(d.instances.len(), 2);
+    assert_eq!(d.instances[0].object, 0);
+    assert_eq!(d.instances[0].world_from_instance.m, Mat4::IDENTITY);
+    assert_eq!(
+        d.instances[1].world_from_instance.m,
+        Mat4::from_translation(Vec3::new(0.0, 5.0, 0.0))
+    );
+}
+
 #[test]
 fn look_at_sets_the_camera() {
     let s = load("LookAt 0 1 6.8  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 30 \"float lensradius\" 0.1 \"float focaldistance\" 5\nWorldBegin");

@@ -114,6 +114,40 @@ fn curved_and_malformed_bilinear_patches() {
 }
 
 #[test]
+fn object_instancing_errors() {
+    assert_eq!(
+        error("WorldBegin\nObjectInstance \"nothing\""),
+        "scene.pbrt:2:1: object \"nothing\" is not defined"
+    );
+    assert_eq!(
+        error(
+            "WorldBegin\nObjectBegin \"a\"\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\nShape \"sphere\"\nObjectEnd"
+        ),
+        "scene.pbrt:4:1: Area lights not supported with object instancing"
+    );
+    assert_eq!(
+        error("WorldBegin\nObjectBegin \"a\"\nObjectBegin \"b\""),
+        "scene.pbrt:3:1: ObjectBegin \"b\" inside the definition of object \"a\"; objects do not nest"
+    );
+    assert_eq!(
+        error("WorldBegin\nObjectBegin \"a\"\nObjectInstance \"a\""),
+        "scene.pbrt:3:1: ObjectInstance inside an object definition; objects do not nest"
+    );
+    assert_eq!(
+        error("WorldBegin\nObjectEnd"),
+        "scene.pbrt:2:1: ObjectEnd without a matching ObjectBegin"
+    );
+    assert_eq!(
+        error("WorldBegin\nObjectBegin \"a\"\nShape \"sphere\""),
+        "scene.pbrt:2:1: ObjectBegin has no matching ObjectEnd"
+    );
+    assert_eq!(
+        error("WorldBegin\nObjectBegin \"a\"\nObjectEnd\nObjectBegin \"a\""),
+        "scene.pbrt:4:1: object \"a\" is defined twice"
+    );
+}
+
+#[test]
 fn wrong_parameter_type_and_arity() {
     assert_eq!(
         error("WorldBegin\nShape \"sphere\" \"integer radius\" 2"),
@@ -265,10 +299,6 @@ fn unsupported_features_are_named() {
     assert_eq!(
         error("Camera \"orthographic\""),
         "scene.pbrt:1:1: camera type \"orthographic\" is not supported yet"
-    );
-    assert_eq!(
-        error("WorldBegin\nObjectBegin \"tree\""),
-        "scene.pbrt:2:1: ObjectBegin \"tree\": object instancing is not supported yet"
     );
     assert_eq!(
         error("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\""),

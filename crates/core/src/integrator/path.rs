@@ -62,7 +62,7 @@ impl PathIntegrator {
                 break;
             };
             let si = hit.si;
-            let prim = &scene.primitives[hit.primitive as usize];
+            let prim = hit.primitive;
 
             // Add emission: in full at the camera and after specular bounces, otherwise as the
             // direct-lighting strategy weights it.

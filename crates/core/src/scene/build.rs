@@ -4,7 +4,10 @@
 
 use std::sync::Arc;
 
-use super::{EnvMapping, GeometryDesc, LightDesc, MaterialDesc, Primitive, Scene, SceneDescription};
+use super::{
+    EnvMapping, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, Scene, SceneDescription,
+    ShapeDesc,
+};
 use crate::accel::Bvh;
 use crate::camera::{Camera, PerspectiveCamera};
 use crate::film::Filter;
@@ -148,99 +151,165 @@ impl SceneDescription {
                 }
             }
         }
-        for (i, s) in self.shapes.iter().enumerate() {
-            if s.material as usize >= self.materials.len() {
+        validate_shapes(&self.shapes, self.materials.len())?;
+        for (k, o) in self.objects.iter().enumerate() {
+            validate_shapes(&o.shapes, self.materials.len())?;
+            if o.shapes.iter().any(|s| s.area_light.is_some()) {
                 return Err(invalid(
-                    format!("shape {i}"),
-                    format!("material index {} out of range", s.material),
+                    format!("object {k}"),
+                    "Area lights not supported with object instancing",
                 ));
             }
-            if let Some(a) = &s.area_light {
-                check_non_negative(&format!("emitted radiance of shape {i}"), &a.radiance.to_array())?;
-                if let Some(p) = a.power {
-                    check_non_negative(&format!("power of the area light of shape {i}"), &[p])?;
-                }
+        }
+        for (k, inst) in self.instances.iter().enumerate() {
+            if inst.object as usize >= self.objects.len() {
+                return Err(invalid(
+                    format!("instance {k}"),
+                    format!("object index {} out of range", inst.object),
+                ));
             }
-            match &s.geometry {
-                GeometryDesc::TriangleMesh(m) => {
-                    let what = format!("triangle mesh (shape {i})");
-                    if m.indices.len() % 3 != 0 {
-                        return Err(invalid(
-                            what,
-                            format!("{} indices is not a multiple of 3", m.indices.len()),
-                        ));
-                    }
-                    if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len()) {
-                        return Err(invalid(
-                            what,
-                            format!("vertex index {bad} out of range ({} vertices)", m.positions.len()),
-                        ));
-                    }
-                    check_finite(
-                        &what,
-                        &m.positions.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
-                    )?;
-                    if let Some(n) = &m.normals {
-                        if n.len() != m.positions.len() {
-                            return Err(invalid(
-                                what,
-                                format!("{} normals for {} vertices", n.len(), m.positions.len()),
-                            ));
-                        }
-                        check_finite(&what, &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
-                    }
-                    if let Some(uv) = &m.uvs {
-                        if uv.len() != m.positions.len() {
-                            return Err(invalid(
-                                what,
-                                format!("{} uvs for {} vertices", uv.len(), m.positions.len()),
-                            ));
-                        }
-                    }
-                }
-                GeometryDesc::Sphere {
-                    radius,
-                    world_from_object,
-                } => {
-                    if !(*radius > 0.0 && radius.is_finite()) {
-                        return Err(invalid(
-                            format!("sphere (shape {i})"),
-                            format!("expected radius > 0, found {radius}"),
-                        ));
-                    }
-                    check_finite("sphere transform", &world_from_object.m.to_cols_array())?;
-                }
-                GeometryDesc::Disk {
-                    height,
-                    radius,
-                    inner_radius,
-                    phi_max,
-                    world_from_object,
-                } => {
-                    let what = format!("disk (shape {i})");
-                    if !(*radius > 0.0 && radius.is_finite() && height.is_finite()) {
-                        return Err(invalid(
-                            what,
-                            format!("expected a finite height and radius > 0, found {height} and {radius}"),
-                        ));
-                    }
-                    if !(*inner_radius >= 0.0 && inner_radius < radius) {
-                        return Err(invalid(
-                            what,
-                            format!("expected 0 <= inner radius < radius, found {inner_radius} and {radius}"),
-                        ));
-                    }
-                    if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
-                        return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
-                    }
-                    check_finite("disk transform", &world_from_object.m.to_cols_array())?;
-                }
-            }
+            check_finite("instance transform", &inst.world_from_instance.m.to_cols_array())?;
         }
         for (i, l) in self.lights.iter().enumerate() {
             validate_light(i, l)?;
         }
         Ok(())
+    }
+}
+
+/// Check the shapes of the scene or of an object.
+fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), BuildError> {
+    for (i, s) in shapes.iter().enumerate() {
+        if s.material as usize >= n_materials {
+            return Err(invalid(
+                format!("shape {i}"),
+                format!("material index {} out of range", s.material),
+            ));
+        }
+        if let Some(a) = &s.area_light {
+            check_non_negative(&format!("emitted radiance of shape {i}"), &a.radiance.to_array())?;
+            if let Some(p) = a.power {
+                check_non_negative(&format!("power of the area light of shape {i}"), &[p])?;
+            }
+        }
+        match &s.geometry {
+            GeometryDesc::TriangleMesh(m) => {
+                let what = format!("triangle mesh (shape {i})");
+                if m.indices.len() % 3 != 0 {
+                    return Err(invalid(
+                        what,
+                        format!("{} indices is not a multiple of 3", m.indices.len()),
+                    ));
+                }
+                if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len()) {
+                    return Err(invalid(
+                        what,
+                        format!("vertex index {bad} out of range ({} vertices)", m.positions.len()),
+                    ));
+                }
+                check_finite(
+                    &what,
+                    &m.positions.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
+                )?;
+                if let Some(n) = &m.normals {
+                    if n.len() != m.positions.len() {
+                        return Err(invalid(
+                            what,
+                            format!("{} normals for {} vertices", n.len(), m.positions.len()),
+                        ));
+                    }
+                    check_finite(&what, &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
+                }
+                if let Some(uv) = &m.uvs {
+                    if uv.len() != m.positions.len() {
+                        return Err(invalid(
+                            what,
+                            format!("{} uvs for {} vertices", uv.len(), m.positions.len()),
+                        ));
+                    }
+                }
+            }
+            GeometryDesc::Sphere {
+                radius,
+                world_from_object,
+            } => {
+                if !(*radius > 0.0 && radius.is_finite()) {
+                    return Err(invalid(
+                        format!("sphere (shape {i})"),
+                        format!("expected radius > 0, found {radius}"),
+                    ));
+                }
+                check_finite("sphere transform", &world_from_object.m.to_cols_array())?;
+            }
+            GeometryDesc::Disk {
+                height,
+                radius,
+                inner_radius,
+                phi_max,
+                world_from_object,
+            } => {
+                let what = format!("disk (shape {i})");
+                if !(*radius > 0.0 && radius.is_finite() && height.is_finite()) {
+                    return Err(invalid(
+                        what,
+                        format!("expected a finite height and radius > 0, found {height} and {radius}"),
+                    ));
+                }
+                if !(*inner_radius >= 0.0 && inner_radius < radius) {
+                    return Err(invalid(
+                        what,
+                        format!("expected 0 <= inner radius < radius, found {inner_radius} and {radius}"),
+                    ));
+                }
+                if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
+                    return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
+                }
+                check_finite("disk transform", &world_from_object.m.to_cols_array())?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The shapes a description stands for (one per triangle of a mesh).
+fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
+    match &s.geometry {
+        GeometryDesc::TriangleMesh(m) => {
+            let mesh = Arc::new(TriangleMesh {
+                positions: m.positions.clone(),
+                indices: m.indices.clone(),
+                normals: m
+                    .normals
+                    .as_ref()
+                    .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
+                uvs: m.uvs.clone(),
+                flip_normals: s.flip_normals,
+            });
+            (0..mesh.triangle_count() as u32)
+                .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
+                .filter(|t| t.area() > 0.0)
+                .collect()
+        }
+        GeometryDesc::Sphere {
+            radius,
+            world_from_object,
+        } => {
+            vec![Shape::Sphere(Sphere::new(*radius, *world_from_object, s.flip_normals))]
+        }
+        GeometryDesc::Disk {
+            height,
+            radius,
+            inner_radius,
+            phi_max,
+            world_from_object,
+        } => vec![Shape::Disk(Disk::new(
+            *height,
+            *radius,
+            *inner_radius,
+            *phi_max,
+            *world_from_object,
+            s.flip_normals,
+        ))],
     }
 }
 
@@ -343,44 +412,7 @@ impl Scene {
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         for s in &desc.shapes {
-            let shapes: Vec<Shape> = match &s.geometry {
-                GeometryDesc::TriangleMesh(m) => {
-                    let mesh = Arc::new(TriangleMesh {
-                        positions: m.positions.clone(),
-                        indices: m.indices.clone(),
-                        normals: m
-                            .normals
-                            .as_ref()
-                            .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
-                        uvs: m.uvs.clone(),
-                        flip_normals: s.flip_normals,
-                    });
-                    (0..mesh.triangle_count() as u32)
-                        .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
-                        .filter(|t| t.area() > 0.0)
-                        .collect()
-                }
-                GeometryDesc::Sphere {
-                    radius,
-                    world_from_object,
-                } => {
-                    vec![Shape::Sphere(Sphere::new(*radius, *world_from_object, s.flip_normals))]
-                }
-                GeometryDesc::Disk {
-                    height,
-                    radius,
-                    inner_radius,
-                    phi_max,
-                    world_from_object,
-                } => vec![Shape::Disk(Disk::new(
-                    *height,
-                    *radius,
-                    *inner_radius,
-                    *phi_max,
-                    *world_from_object,
-                    s.flip_normals,
-                ))],
-            };
+            let shapes = shape_geometry(s);
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
                     let sides = if a.two_sided { 2.0 } else { 1.0 };
@@ -431,7 +463,35 @@ impl Scene {
                 )),
             });
         }
-        let bounds: Vec<_> = primitives.iter().map(|p: &Primitive| p.shape.bounds()).collect();
+        let objects: Vec<Arc<ObjectGeometry>> = desc
+            .objects
+            .iter()
+            .map(|o| {
+                let primitives = o
+                    .shapes
+                    .iter()
+                    .flat_map(|s| {
+                        shape_geometry(s).into_iter().map(|shape| Primitive {
+                            shape,
+                            material: s.material,
+                            light: None,
+                        })
+                    })
+                    .collect();
+                Arc::new(ObjectGeometry::new(primitives))
+            })
+            .collect();
+        let instances: Vec<Instance> = desc
+            .instances
+            .iter()
+            .map(|i| Instance::new(objects[i.object as usize].clone(), i.world_from_instance))
+            .filter(|i| !i.object.primitives.is_empty())
+            .collect();
+        let bounds: Vec<_> = primitives
+            .iter()
+            .map(|p: &Primitive| p.shape.bounds())
+            .chain(instances.iter().map(Instance::bounds))
+            .collect();
         let bvh = Bvh::build(&bounds);
         // Distant and infinite lights need the scene's size before their power is known.
         let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));
@@ -450,6 +510,7 @@ impl Scene {
             film: desc.film,
             sampler: desc.sampler,
             integrator: desc.integrator,
+            instances,
             bvh,
         })
     }

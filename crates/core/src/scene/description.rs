@@ -29,6 +29,28 @@ pub struct SceneDescription {
     pub shapes: Vec<ShapeDesc>,
     /// Lights that are not attached to shapes (point lights, ...).
     pub lights: Vec<LightDesc>,
+    /// Geometry defined once and placed by [`Self::instances`] (pbrt `ObjectBegin`).
+    pub objects: Vec<ObjectDesc>,
+    /// Placements of [`Self::objects`] (pbrt `ObjectInstance`); each shares its object's
+    /// BVH rather than copying it.
+    pub instances: Vec<InstanceDesc>,
+}
+
+/// Shapes defined once for instancing. Their transforms lead to the object's own space,
+/// which each instance places in the world. They cannot emit (as in pbrt-v4).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ObjectDesc {
+    /// The shapes, in object space (meshes already transformed there).
+    pub shapes: Vec<ShapeDesc>,
+}
+
+/// One placement of an object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InstanceDesc {
+    /// Index into [`SceneDescription::objects`].
+    pub object: u32,
+    /// World-from-object transform.
+    pub world_from_instance: Transform,
 }
 
 /// A pinhole or thin-lens perspective camera (pbrt `Camera "perspective"`).

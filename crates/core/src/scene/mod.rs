@@ -3,9 +3,11 @@
 
 mod build;
 mod description;
+mod instance;
 
 pub use build::BuildError;
 pub use description::*;
+pub use instance::{Instance, ObjectGeometry};
 
 use crate::accel::Bvh;
 use crate::camera::Camera;
@@ -28,11 +30,11 @@ pub struct Primitive {
 
 /// The closest hit of a ray: the surface interaction and what was hit.
 #[derive(Clone, Copy, Debug)]
-pub struct Hit {
-    /// Geometry at the hit.
+pub struct Hit<'a> {
+    /// Geometry at the hit (world space, also inside instances).
     pub si: SurfaceInteraction,
-    /// Index of the primitive hit.
-    pub primitive: u32,
+    /// The primitive hit: one of [`Scene::primitives`] or of an instanced object.
+    pub primitive: &'a Primitive,
 }
 
 /// Everything needed to render, ready for queries.
@@ -59,28 +61,52 @@ pub struct Scene {
     pub sampler: SamplerDesc,
     /// Integrator settings.
     pub integrator: IntegratorDesc,
+    /// Placed objects; the BVH refers to them after the primitives.
+    pub instances: Vec<Instance>,
     bvh: Bvh,
 }
 
 impl Scene {
     /// Closest hit along `ray` (for `t` in `(0, inf)`).
     #[must_use]
-    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        let (prim, (shape_hit, _)) = self.bvh.closest_hit(ray, f32::INFINITY, |i, r, t_max| {
-            self.primitives[i as usize]
-                .shape
-                .intersect(r, t_max)
-                .map(|h| (h.t, (h, ())))
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit<'_>> {
+        let n = self.primitives.len() as u32;
+        let (index, (shape_hit, prim)) = self.bvh.closest_hit(ray, f32::INFINITY, |i, r, t_max| {
+            if i < n {
+                self.primitives[i as usize]
+                    .shape
+                    .intersect(r, t_max)
+                    .map(|h| (h.t, (h, 0)))
+            } else {
+                self.instances[(i - n) as usize]
+                    .intersect(r, t_max)
+                    .map(|(p, h)| (h.t, (h, p)))
+            }
         })?;
-        let si = self.primitives[prim as usize].shape.interaction(ray, &shape_hit);
-        Some(Hit { si, primitive: prim })
+        if index < n {
+            let primitive = &self.primitives[index as usize];
+            let si = primitive.shape.interaction(ray, &shape_hit);
+            Some(Hit { si, primitive })
+        } else {
+            let inst = &self.instances[(index - n) as usize];
+            let si = inst.interaction(ray, prim, &shape_hit);
+            Some(Hit {
+                si,
+                primitive: &inst.object.primitives[prim as usize],
+            })
+        }
     }
 
     /// True when nothing blocks `ray` within `(0, t_max)`.
     #[must_use]
     pub fn unoccluded_ray(&self, ray: &Ray, t_max: f32) -> bool {
+        let n = self.primitives.len() as u32;
         !self.bvh.any_hit(ray, t_max, |i, r, t| {
-            self.primitives[i as usize].shape.intersect(r, t).is_some()
+            if i < n {
+                self.primitives[i as usize].shape.intersect(r, t).is_some()
+            } else {
+                self.instances[(i - n) as usize].any_hit(r, t)
+            }
         })
     }
 

@@ -25,6 +25,8 @@ pub fn empty_scene() -> SceneDescription {
         }],
         shapes: vec![],
         lights: vec![],
+        objects: vec![],
+        instances: vec![],
     }
 }
 

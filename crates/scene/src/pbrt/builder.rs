@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use glam::Mat4;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
-    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, LightDesc, MaterialDesc, MaterialId, SamplerDesc,
+    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, LightDesc, MaterialDesc, MaterialId, ObjectDesc, SamplerDesc,
     SceneDescription, ShapeDesc,
 };
 
@@ -58,6 +58,12 @@ pub struct SceneBuilder {
     pub(super) named_materials: HashMap<String, (MaterialDesc, Location)>,
     pub(super) shapes: Vec<(ShapeDesc, MaterialRef)>,
     pub(super) lights: Vec<LightDesc>,
+    /// Defined objects, by index; [`Self::object_ids`] maps names to indices.
+    pub(super) objects: Vec<super::instancing::ObjectDef>,
+    pub(super) object_ids: HashMap<String, u32>,
+    /// The object being defined (between `ObjectBegin` and `ObjectEnd`).
+    pub(super) current_object: Option<(String, super::instancing::ObjectDef)>,
+    pub(super) instances: Vec<mcrender_core::scene::InstanceDesc>,
     warnings: Vec<String>,
     warned_transform_begin: bool,
 }
@@ -84,6 +90,10 @@ impl SceneBuilder {
             named_materials: HashMap::new(),
             shapes: Vec::new(),
             lights: Vec::new(),
+            objects: Vec::new(),
+            object_ids: HashMap::new(),
+            current_object: None,
+            instances: Vec::new(),
             warnings: Vec::new(),
             warned_transform_begin: false,
         }
@@ -275,10 +285,10 @@ impl SceneBuilder {
             return Err(SceneError::syntax(end, "end of file before \"WorldBegin\""));
         }
         if let Some(scope) = self.scopes.last() {
-            let end_directive = if scope.directive == "TransformBegin" {
-                "TransformEnd"
-            } else {
-                "AttributeEnd"
+            let end_directive = match scope.directive {
+                "TransformBegin" => "TransformEnd",
+                "ObjectBegin" => "ObjectEnd",
+                _ => "AttributeEnd",
             };
             return Err(SceneError::syntax(
                 &scope.loc,
@@ -288,23 +298,31 @@ impl SceneBuilder {
 
         let mut materials: Vec<MaterialDesc> = Vec::new();
         let mut material_ids: HashMap<String, MaterialId> = HashMap::new();
-        let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (mut shape, material) in std::mem::take(&mut self.shapes) {
-            let desc = match material {
-                MaterialRef::Inline(desc) => desc,
-                MaterialRef::Named { name, loc } => match self.named_materials.get(&name) {
-                    Some((desc, _)) => desc.clone(),
-                    None => {
-                        return Err(SceneError::invalid(
-                            &loc,
-                            format!("named material \"{name}\" is not defined"),
-                        ))
-                    }
-                },
-            };
-            shape.material = intern_material(&mut materials, &mut material_ids, desc);
-            shapes.push(shape);
-        }
+        let mut resolve = |list: Vec<(ShapeDesc, MaterialRef)>| -> Result<Vec<ShapeDesc>, SceneError> {
+            let mut shapes = Vec::with_capacity(list.len());
+            for (mut shape, material) in list {
+                let desc = match material {
+                    MaterialRef::Inline(desc) => desc,
+                    MaterialRef::Named { name, loc } => match self.named_materials.get(&name) {
+                        Some((desc, _)) => desc.clone(),
+                        None => {
+                            return Err(SceneError::invalid(
+                                &loc,
+                                format!("named material \"{name}\" is not defined"),
+                            ))
+                        }
+                    },
+                };
+                shape.material = intern_material(&mut materials, &mut material_ids, desc);
+                shapes.push(shape);
+            }
+            Ok(shapes)
+        };
+        let shapes = resolve(std::mem::take(&mut self.shapes))?;
+        let objects = std::mem::take(&mut self.objects)
+            .into_iter()
+            .map(|o| resolve(o.shapes).map(|shapes| ObjectDesc { shapes }))
+            .collect::<Result<Vec<_>, _>>()?;
 
         if self.lights.is_empty() && !shapes.iter().any(|s| s.area_light.is_some()) {
             self.warnings.push(format!(
@@ -327,6 +345,8 @@ impl SceneBuilder {
                 materials,
                 shapes,
                 lights: self.lights,
+                objects,
+                instances: self.instances,
             },
             output_filename: self.output_filename,
             warnings: self.warnings,

@@ -12,8 +12,8 @@
 //! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
 //! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
 //! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
-//! `Include`/`Import`, `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials,
-//! textures, lights, shapes, media, instancing and motion blur are errors naming the feature.
+//! planar `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
+//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, textures, lights, shapes, media and motion blur are errors naming the feature.
 //!
 //! Relative file names resolve as in pbrt-v4: against the directory of the top-level scene
 //! file (then, as a fallback, against the directory of the including file).
@@ -24,6 +24,7 @@
 
 mod builder;
 mod graphics_state;
+mod instancing;
 mod lights;
 mod materials;
 mod options;

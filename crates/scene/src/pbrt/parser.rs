@@ -349,19 +349,15 @@ impl Parser {
                 self.builder.texture(&tex, &class, &loc)?;
             }
             "Include" | "Import" => self.include(name, &loc)?,
-            "ObjectBegin" | "ObjectInstance" => {
+            "ObjectBegin" => {
                 let (object, _) = self.expect_string("a quoted object name")?;
-                return Err(SceneError::unsupported(
-                    &loc,
-                    format!("{name} \"{object}\": object instancing is not supported yet"),
-                ));
+                self.builder.object_begin(&object, &loc)?;
             }
-            "ObjectEnd" => {
-                return Err(SceneError::unsupported(
-                    &loc,
-                    "ObjectEnd: object instancing is not supported yet",
-                ))
+            "ObjectInstance" => {
+                let (object, _) = self.expect_string("a quoted object name")?;
+                self.builder.object_instance(&object, &loc)?;
             }
+            "ObjectEnd" => self.builder.object_end(&loc)?,
             "MakeNamedMedium" => {
                 let (medium, _) = self.kind_and_params(name, "a quoted medium name", &loc)?;
                 return Err(SceneError::unsupported(

@@ -77,8 +77,7 @@ impl SceneBuilder {
             area_light: self.state.area_light,
             flip_normals,
         };
-        self.shapes.push((shape, self.state.material.clone()));
-        Ok(())
+        self.add_shape(shape, loc)
     }
 
     /// `P`, `indices` (`per_face` a face), `N` and `uv` of a `trianglemesh` (3) or a

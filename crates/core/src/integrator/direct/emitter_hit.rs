@@ -19,10 +19,7 @@ pub fn emitted_toward(scene: &Scene, si: &SurfaceInteraction, wi: Vec3, stats: &
             .iter()
             .fold(Rgb::BLACK, |sum, &i| sum + scene.lights[i as usize].le(wi));
     };
-    match scene.primitives[hit.primitive as usize]
-        .light
-        .map(|i| &scene.lights[i as usize])
-    {
+    match hit.primitive.light.map(|i| &scene.lights[i as usize]) {
         Some(Light::DiffuseArea(area)) => area.l(hit.si.n(), hit.si.wo),
         _ => Rgb::BLACK,
     }

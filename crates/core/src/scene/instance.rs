@@ -1,0 +1,137 @@
+//! Object instancing: an object's primitives with their own BVH (the bottom level), shared
+//! through an `Arc` by every [`Instance`] that places it with a transform. The scene's BVH
+//! (the top level) holds instance bounds beside its own primitives. Rays are moved into
+//! instance space (the direction unnormalised, so `t` is the same in both spaces) and hits
+//! moved back with their error bounds grown by the transform's rounding.
+
+use std::sync::Arc;
+
+use super::Primitive;
+use crate::accel::Bvh;
+use crate::math::{gamma, Bounds3, Mat3, Ray, Transform, Vec3};
+use crate::shape::{ShapeHit, SurfaceInteraction};
+
+/// An object's primitives (in instance space) and their BVH.
+#[derive(Debug)]
+pub struct ObjectGeometry {
+    /// Primitives, referred to by the BVH. None emits.
+    pub primitives: Vec<Primitive>,
+    bvh: Bvh,
+}
+
+impl ObjectGeometry {
+    /// Build the bottom-level BVH over `primitives`.
+    #[must_use]
+    pub fn new(primitives: Vec<Primitive>) -> Self {
+        let bounds: Vec<Bounds3> = primitives.iter().map(|p| p.shape.bounds()).collect();
+        Self {
+            bvh: Bvh::build(&bounds),
+            primitives,
+        }
+    }
+}
+
+/// One placement of a shared object.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// The shared object.
+    pub object: Arc<ObjectGeometry>,
+    /// World-from-instance transform.
+    pub world_from_instance: Transform,
+}
+
+impl Instance {
+    /// Place `object` by `world_from_instance`.
+    #[must_use]
+    pub fn new(object: Arc<ObjectGeometry>, world_from_instance: Transform) -> Self {
+        Self {
+            object,
+            world_from_instance,
+        }
+    }
+
+    /// World-space bounds: the transformed corners of the object's bounds, padded by the
+    /// transform's rounding.
+    #[must_use]
+    pub fn bounds(&self) -> Bounds3 {
+        let b = self.object.bvh.bounds();
+        let mut w = Bounds3::EMPTY;
+        for i in 0..8 {
+            let c = Vec3::new(
+                if i & 1 == 0 { b.min.x } else { b.max.x },
+                if i & 2 == 0 { b.min.y } else { b.max.y },
+                if i & 4 == 0 { b.min.z } else { b.max.z },
+            );
+            w = w.union_point(self.world_from_instance.point(c));
+        }
+        let pad = gamma(3) * w.min.abs().max(w.max.abs());
+        Bounds3 {
+            min: w.min - pad,
+            max: w.max + pad,
+        }
+    }
+
+    /// `ray` in instance space; the same `t` names the same point in both spaces.
+    #[must_use]
+    pub fn local_ray(&self, ray: &Ray) -> Ray {
+        let inv = &self.world_from_instance.m_inv;
+        Ray::new(inv.transform_point3(ray.o), inv.transform_vector3(ray.d))
+    }
+
+    /// Closest hit of a world-space ray within `t_max`: primitive index in the object and
+    /// the shape's hit record (for the instance-space ray).
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(u32, ShapeHit)> {
+        let local = self.local_ray(ray);
+        let (prim, (hit, ())) = self.object.bvh.closest_hit(&local, t_max, |i, r, t| {
+            self.object.primitives[i as usize]
+                .shape
+                .intersect(r, t)
+                .map(|h| (h.t, (h, ())))
+        })?;
+        Some((prim, hit))
+    }
+
+    /// True when something in the instance blocks `ray` within `t_max`.
+    #[must_use]
+    pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
+        let local = self.local_ray(ray);
+        self.object.bvh.any_hit(&local, t_max, |i, r, t| {
+            self.object.primitives[i as usize].shape.intersect(r, t).is_some()
+        })
+    }
+
+    /// The world-space interaction for a hit from [`Self::intersect`].
+    #[must_use]
+    pub fn interaction(&self, ray: &Ray, prim: u32, hit: &ShapeHit) -> SurfaceInteraction {
+        let local = self.local_ray(ray);
+        let si = self.object.primitives[prim as usize].shape.interaction(&local, hit);
+        let t = &self.world_from_instance;
+        let m = &t.m;
+        let lin = Mat3::from_mat4(*m);
+        let abs_lin = Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
+        let p_local = si.intr.p;
+        // Error through the affine transform (pbrt-v4 eq. 6.30: an uncertain input point).
+        let p_error = (gamma(3) + 1.0) * (abs_lin * si.intr.p_error)
+            + gamma(3) * (abs_lin * p_local.abs() + m.w_axis.truncate().abs());
+        let n = t.normal(si.intr.n).normalize_or_zero();
+        let ns = t.normal(si.ns).normalize_or_zero();
+        let ns = if ns == Vec3::ZERO { n } else { ns };
+        let dpdu = t.vector(si.dpdu);
+        let dpdu = (dpdu - n * n.dot(dpdu))
+            .try_normalize()
+            .unwrap_or_else(|| crate::math::Frame::from_z(n).x);
+        SurfaceInteraction {
+            intr: crate::shape::Interaction {
+                p: m.transform_point3(p_local),
+                p_error,
+                n,
+            },
+            ns,
+            dpdu,
+            uv: si.uv,
+            wo: -ray.d.normalize(),
+            t: si.t,
+        }
+    }
+}
