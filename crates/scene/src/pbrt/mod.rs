@@ -13,7 +13,8 @@
 //! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
 //! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
 //! planar `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
-//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, textures, lights, shapes, media and motion blur are errors naming the feature.
+//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, textures, lights,
+//! shapes, media and motion blur are errors naming the feature.
 //!
 //! Relative file names resolve as in pbrt-v4: against the directory of the top-level scene
 //! file (then, as a fallback, against the directory of the including file).
