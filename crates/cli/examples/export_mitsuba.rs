@@ -51,6 +51,9 @@ fn main() -> Result<()> {
     let out = PathBuf::from(out);
     std::fs::create_dir_all(&out)?;
     let mut shapes = Vec::new();
+    if !d.instances.is_empty() {
+        bail!("object instances are not exported yet");
+    }
     for (i, s) in d.shapes.iter().enumerate() {
         let material = material_json(&d.materials[s.material as usize])?;
         let emitter = s.area_light.map_or("null".to_string(), |a| {
@@ -84,6 +87,7 @@ fn main() -> Result<()> {
                     scale * radius
                 )
             }
+            GeometryDesc::Disk { .. } => bail!("shape {i}: disks are not exported yet"),
         };
         shapes.push(format!(r#"{{{geometry},"material":{material},"emitter":{emitter}}}"#));
     }
