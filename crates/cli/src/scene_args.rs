@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SceneDescription};
+use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
 use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
 
 use crate::builtin;
@@ -28,6 +28,17 @@ pub enum RouletteChoice {
     Throughput,
 }
 
+/// Sampler overrides.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SamplerChoice {
+    /// Independent uniform random numbers.
+    Independent,
+    /// Jittered stratified samples (grid chosen from the sample count).
+    Stratified,
+    /// Owen-scrambled Sobol' points.
+    Sobol,
+}
+
 /// The scene and what to override in it.
 #[derive(Args, Debug, Default, Clone)]
 pub struct SceneArgs {
@@ -48,6 +59,9 @@ pub struct SceneArgs {
     /// Random seed.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Sample generator (default: the scene file's).
+    #[arg(long, value_enum)]
+    pub sampler: Option<SamplerChoice>,
     /// Integrator.
     #[arg(long, value_enum)]
     pub integrator: Option<IntegratorChoice>,
@@ -125,6 +139,19 @@ impl SceneArgs {
         }
         if let Some(s) = self.seed {
             desc.sampler.seed = s;
+        }
+        if let Some(kind) = self.sampler {
+            desc.sampler.kind = match kind {
+                SamplerChoice::Independent => SamplerKind::Independent,
+                // A grid that does not multiply to the sample count makes the sampler choose
+                // the most nearly square one (the same rule as overriding --spp).
+                SamplerChoice::Stratified => SamplerKind::Stratified {
+                    x_samples: 0,
+                    y_samples: 0,
+                    jitter: true,
+                },
+                SamplerChoice::Sobol => SamplerKind::OwenSobol,
+            };
         }
         if let Some(i) = self.integrator {
             desc.integrator.kind = match i {

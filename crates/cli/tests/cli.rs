@@ -141,3 +141,41 @@ fn no_arguments_renders_the_builtin_cornell_box() {
     );
     assert!(stderr(&o).contains("paths/s"), "{}", stderr(&o));
 }
+
+#[test]
+fn sampler_override_changes_the_samples_but_not_the_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut means = Vec::new();
+    for sampler in ["independent", "stratified", "sobol"] {
+        let out = format!("{sampler}.exr");
+        let o = mcrender(
+            &[
+                "render",
+                &cornell(),
+                "--sampler",
+                sampler,
+                "--resolution",
+                "32x32",
+                "--spp",
+                "64",
+                "-o",
+                &out,
+                "-q",
+            ],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        let img = mcrender_scene::image_io::read_exr(&dir.path().join(&out)).unwrap();
+        means.push(img.pixels.iter().map(|p| f64::from(p.luminance())).sum::<f64>() / img.pixels.len() as f64);
+    }
+    // Three unbiased estimates of one image: their means agree to within the noise (a few %).
+    for m in &means[1..] {
+        assert!((m - means[0]).abs() < 0.05 * means[0], "{means:?}");
+    }
+    assert!(
+        means[0] != means[1] && means[1] != means[2],
+        "the override did nothing: {means:?}"
+    );
+    let o = mcrender(&["render", &cornell(), "--sampler", "halton", "-q"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+}
