@@ -59,6 +59,19 @@ impl Transform {
         self.m.project_point3(p)
     }
 
+    /// Transform a point known to within `p_error` (absolute, per axis) by an affine
+    /// transform; returns the point and the bound of its error, which adds the rounding of
+    /// the transform itself (pbrt-v4 eqs. 6.28 and 6.30).
+    #[must_use]
+    pub fn point_with_error(&self, p: Vec3, p_error: Vec3) -> (Vec3, Vec3) {
+        let m = &self.m;
+        let lin = glam::Mat3::from_mat4(*m);
+        let abs_lin = glam::Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
+        let error = (super::gamma(3) + 1.0) * (abs_lin * p_error)
+            + super::gamma(3) * (abs_lin * p.abs() + m.w_axis.truncate().abs());
+        (m.transform_point3(p), error)
+    }
+
     /// Transform a direction.
     #[inline]
     #[must_use]

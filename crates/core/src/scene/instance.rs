@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use super::Primitive;
 use crate::accel::Bvh;
-use crate::math::{gamma, Bounds3, Mat3, Ray, Transform, Vec3};
+use crate::math::{gamma, Bounds3, Ray, Transform, Vec3};
 use crate::shape::{ShapeHit, SurfaceInteraction};
 
 /// An object's primitives (in instance space) and their BVH.
@@ -107,26 +107,14 @@ impl Instance {
         let local = self.local_ray(ray);
         let si = self.object.primitives[prim as usize].shape.interaction(&local, hit);
         let t = &self.world_from_instance;
-        let m = &t.m;
-        let lin = Mat3::from_mat4(*m);
-        let abs_lin = Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
-        let p_local = si.intr.p;
-        // Error through the affine transform (pbrt-v4 eq. 6.30: an uncertain input point).
-        let p_error = (gamma(3) + 1.0) * (abs_lin * si.intr.p_error)
-            + gamma(3) * (abs_lin * p_local.abs() + m.w_axis.truncate().abs());
+        let (p, p_error) = t.point_with_error(si.intr.p, si.intr.p_error);
         let n = t.normal(si.intr.n).normalize_or_zero();
         let ns = t.normal(si.ns).normalize_or_zero();
         let ns = if ns == Vec3::ZERO { n } else { ns };
         let dpdu = t.vector(si.dpdu);
-        let dpdu = (dpdu - n * n.dot(dpdu))
-            .try_normalize()
-            .unwrap_or_else(|| crate::math::Frame::from_z(n).x);
+        let dpdu = crate::math::Frame::from_zx(n, dpdu).x;
         SurfaceInteraction {
-            intr: crate::shape::Interaction {
-                p: m.transform_point3(p_local),
-                p_error,
-                n,
-            },
+            intr: crate::shape::Interaction { p, p_error, n },
             ns,
             dpdu,
             uv: si.uv,

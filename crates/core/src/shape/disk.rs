@@ -112,13 +112,9 @@ impl Disk {
     /// The surface point for an object-space point on the disk.
     fn interaction_at(&self, p_obj: Vec3, wo: Vec3, t: f32) -> SurfaceInteraction {
         let p_obj = Vec3::new(p_obj.x, p_obj.y, self.height);
-        let m = &self.world_from_object.m;
-        let lin = Mat3::from_mat4(*m);
-        let abs_lin = Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
-        let p = m.transform_point3(p_obj);
         // The object-space point is exact in z and carries no tracked error (pbrt-v4); the
-        // transform adds its own rounding (pbrt-v4 eq. 6.28 with a zero input error).
-        let p_error = gamma(3) * (abs_lin * p_obj.abs() + m.w_axis.truncate().abs());
+        // transform adds its own rounding.
+        let (p, p_error) = self.world_from_object.point_with_error(p_obj, Vec3::ZERO);
         let r_hit = (p_obj.x * p_obj.x + p_obj.y * p_obj.y).sqrt();
         let phi = p_obj.y.atan2(p_obj.x).rem_euclid(2.0 * PI);
         // pbrt's parameterisation: u = phi / phi_max, v = 0 at the rim, 1 at the inner edge.
@@ -130,9 +126,7 @@ impl Disk {
         let uv = Vec2::new(if self.phi_max > 0.0 { phi / self.phi_max } else { 0.0 }, v);
         let n = self.n;
         let dpdu = self.world_from_object.vector(Vec3::new(-p_obj.y, p_obj.x, 0.0));
-        let dpdu = (dpdu - n * n.dot(dpdu))
-            .try_normalize()
-            .unwrap_or_else(|| crate::math::Frame::from_z(n).x);
+        let dpdu = crate::math::Frame::from_zx(n, dpdu).x;
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns: n,

@@ -107,13 +107,7 @@ impl Sphere {
         // Reproject onto the surface; the error is then gamma(5)|p| (pbrt-v4 eq. 6.36).
         let p_obj = p_obj * (self.radius / p_obj.length());
         let err_obj = gamma(5) * p_obj.abs();
-        let m = &self.world_from_object.m;
-        let lin = Mat3::from_mat4(*m);
-        let abs_lin = Mat3::from_cols(lin.x_axis.abs(), lin.y_axis.abs(), lin.z_axis.abs());
-        let p = m.transform_point3(p_obj);
-        // Error through the affine transform (pbrt-v4 eq. 6.28).
-        let p_error =
-            (gamma(3) + 1.0) * (abs_lin * err_obj) + gamma(3) * (abs_lin * p_obj.abs() + m.w_axis.truncate().abs());
+        let (p, p_error) = self.world_from_object.point_with_error(p_obj, err_obj);
         let mut n = self.world_from_object.normal(p_obj).normalize();
         if self.flip_normals {
             n = -n;
@@ -124,9 +118,7 @@ impl Sphere {
         let uv = Vec2::new(phi / (2.0 * PI), (PI - cos_theta.acos()) / PI);
         let dpdu_obj = Vec3::new(-p_obj.y, p_obj.x, 0.0);
         let dpdu = self.world_from_object.vector(dpdu_obj);
-        let dpdu = (dpdu - n * n.dot(dpdu))
-            .try_normalize()
-            .unwrap_or_else(|| crate::math::Frame::from_z(n).x);
+        let dpdu = crate::math::Frame::from_zx(n, dpdu).x;
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns: n,

@@ -185,9 +185,7 @@ impl Triangle {
         } else {
             Vec3::ZERO
         };
-        let dpdu = (dpdu - ns * ns.dot(dpdu))
-            .try_normalize()
-            .unwrap_or_else(|| Frame::from_z(ns).x);
+        let dpdu = Frame::from_zx(ns, dpdu).x;
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns,
