@@ -93,13 +93,7 @@ fn irradiance_under_a_square_light_matches_the_view_factor() {
     aim_at_receiver(&mut d);
     d.integrator.max_depth = 1;
     d.sampler.samples_per_pixel = 4096;
-    let corner = |a: f32, b: f32, c: f32| {
-        let (x, y) = (a / c, b / c);
-        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
-        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
-    };
-    let f = 4.0 * corner(s, s, h);
-    let e = PI * l * f;
+    let e = square_light_irradiance(s, h, l);
     assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
 }
 

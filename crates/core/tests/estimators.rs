@@ -81,12 +81,7 @@ fn every_technique_is_unbiased_under_a_square_light() {
     aim_at_receiver(&mut d);
     d.integrator.max_depth = 1;
     d.sampler.samples_per_pixel = 2048;
-    let corner = |a: f32, b: f32, c: f32| {
-        let (x, y) = (a / c, b / c);
-        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
-        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
-    };
-    let e = PI * l * 4.0 * corner(s, s, h);
+    let e = square_light_irradiance(s, h, l);
     check_all_strategies(&d, Rgb::splat(rho / PI * e), "square light");
 }
 

@@ -35,12 +35,7 @@ fn square_light() -> (SceneDescription, f64) {
     add_square_light(&mut d, s, h, Rgb::splat(l));
     aim_at_receiver(&mut d);
     d.integrator.max_depth = 1;
-    let corner = |a: f32, b: f32, c: f32| {
-        let (x, y) = (a / c, b / c);
-        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
-        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
-    };
-    let e = PI * l * 4.0 * corner(s, s, h);
+    let e = square_light_irradiance(s, h, l);
     (d, f64::from(rho / PI * e))
 }
 

@@ -211,3 +211,16 @@ pub fn mean_pixel_variance(out: &RenderOutput) -> f64 {
         .sum::<f64>()
         / n
 }
+
+/// Irradiance at a point below the centre of a square emitter of half-side `s` at height
+/// `h` with radiance `l`, facing it: `E = pi L F`, where the view factor is four corners of
+/// F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))],
+/// X = a/c, Y = b/c, for a point below the corner of an a x b rectangle at distance c.
+pub fn square_light_irradiance(s: f32, h: f32, l: f32) -> f32 {
+    let corner = |a: f32, b: f32, c: f32| {
+        let (x, y) = (a / c, b / c);
+        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f32::consts::PI)
+    };
+    std::f32::consts::PI * l * 4.0 * corner(s, s, h)
+}
