@@ -3,7 +3,7 @@ with Mitsuba 3 (see ../shared/peers/README.md for the install), so an independen
 renders exactly the description mcrender's loader produced.
 
 Usage: python bench/mitsuba_scene.py DIR OUT.exr [--res WxH] [--spp N] [--max-depth D]
-       [--distribution ggx|beckmann] [--variant llvm_ad_rgb]
+       [--distribution ggx|beckmann] [--conductor-scale S] [--variant llvm_ad_rgb]
 Prints one JSON line with the wall time and the image's mean RGB.
 """
 import argparse, glob, json, os, time
@@ -19,6 +19,7 @@ p = argparse.ArgumentParser()
 p.add_argument('dir'); p.add_argument('out')
 p.add_argument('--res', default=None); p.add_argument('--spp', type=int, default=64)
 p.add_argument('--max-depth', type=int, default=None); p.add_argument('--distribution', default='ggx')
+p.add_argument('--conductor-scale', type=float, default=1.0)
 p.add_argument('--variant', default='llvm_ad_rgb'); p.add_argument('--threads', type=int, default=2)
 a = p.parse_args()
 mi.set_variant(a.variant)
@@ -39,6 +40,8 @@ def bsdf(mat):
     else:
         b = {'type': 'roughconductor', 'distribution': a.distribution, 'alpha_u': mat['alpha_u'], 'alpha_v': mat['alpha_v'],
              'eta': rgb(mat['eta']), 'k': rgb(mat['k'])}
+        if a.conductor_scale != 1.0:  # a grey factor on the reflectance, for testing hypotheses
+            b['specular_reflectance'] = {'type': 'rgb', 'value': [a.conductor_scale] * 3}
     return {'type': 'twosided', 'bsdf': b}  # pbrt's surfaces reflect on both sides
 for i, s in enumerate(S['shapes']):
     if s['kind'] == 'mesh':

@@ -4,6 +4,7 @@
 //! unwritable output), with a message on stderr naming what is wrong.
 
 mod builtin;
+mod convert_cmd;
 mod diff_cmd;
 mod lab;
 mod pi_cmd;
@@ -35,6 +36,8 @@ enum Command {
     RrStudy(study::rr_study::RrStudyArgs),
     /// Compare an image with a reference: MSE, relative MSE, means, block-mean relative error.
     Diff(diff_cmd::DiffArgs),
+    /// Re-encode an image (EXR/PFM/PNG/... to PNG or EXR), optionally downsampled and scaled.
+    Convert(convert_cmd::ConvertArgs),
     /// Estimate pi from random points and show the variance falling as 1/N (the lecture's
     /// coconut).
     Pi(pi_cmd::PiArgs),
@@ -48,6 +51,7 @@ fn main() -> ExitCode {
         Some(Command::Bounces(args)) => study::bounces::run(&args),
         Some(Command::RrStudy(args)) => study::rr_study::run(&args),
         Some(Command::Diff(args)) => diff_cmd::run(&args),
+        Some(Command::Convert(args)) => convert_cmd::run(&args),
         Some(Command::Pi(args)) => pi_cmd::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
