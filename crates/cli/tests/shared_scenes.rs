@@ -6,6 +6,7 @@
 
 use std::path::PathBuf;
 
+use mcrender_core::color::Rgb;
 use mcrender_core::film::{block_means_of, downsample_box, ImageComparison, BLOCK_REL_EPSILON};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::Scene;
@@ -25,13 +26,20 @@ fn scenes_dir() -> Option<PathBuf> {
 }
 
 fn render_scene(path: &std::path::Path, w: u32, h: u32, spp: u32) -> RenderOutput {
+    render_scene_at_depth(path, w, h, spp, Some(65))
+}
+
+/// Render at `w x h`, seed 7, with max depth `depth` (`None`: the file's).
+fn render_scene_at_depth(path: &std::path::Path, w: u32, h: u32, spp: u32, depth: Option<u32>) -> RenderOutput {
     let loaded = load_file(path).expect("scene loads");
     let mut desc = loaded.description;
     desc.film.width = w;
     desc.film.height = h;
     desc.sampler.samples_per_pixel = spp;
     desc.sampler.seed = 7;
-    desc.integrator.max_depth = 65;
+    if let Some(d) = depth {
+        desc.integrator.max_depth = d;
+    }
     let scene = Scene::build(&desc).expect("scene builds");
     let out = render(&scene, &RenderOptions::default(), &|_, _| {}).expect("render");
     assert_eq!(out.stats.nonfinite_samples, 0);
@@ -53,6 +61,36 @@ fn reference(path: &std::path::Path, w: u32, h: u32) -> ImageRgb {
     }
 }
 
+/// The block relative error expected from our render's noise alone, per channel: for each
+/// block, the standard error of our block mean is sqrt(sum of the pixels' variance of the
+/// mean) / 64, from the render's own per-pixel sample variance (the reference's noise is
+/// ignored). An unbiased render's |block difference| then averages sqrt(2/pi) sigma, so the
+/// expected block relative error is the mean over blocks of sqrt(2/pi) sigma / (|b| + eps).
+fn expected_block_error(out: &RenderOutput, reference: &[Rgb], w: u32, h: u32) -> [f64; 3] {
+    let (_, _, ref_blocks) = block_means_of(reference, w, h, BLOCK).unwrap();
+    let mut expected = [0.0f64; 3];
+    for (k, rb) in ref_blocks.iter().enumerate() {
+        let (bx, by) = (k as u32 % w.div_ceil(BLOCK), k as u32 / w.div_ceil(BLOCK));
+        let mut var = [0.0f64; 3];
+        let mut n = 0u32;
+        for y in by * BLOCK..((by + 1) * BLOCK).min(h) {
+            for x in bx * BLOCK..((bx + 1) * BLOCK).min(w) {
+                n += 1;
+                let v = out.film.pixel(x, y).variance_of_mean();
+                for (c, s) in var.iter_mut().enumerate() {
+                    *s += f64::from(v[c]);
+                }
+            }
+        }
+        let n2 = f64::from(n).powi(2);
+        for c in 0..3 {
+            let sigma = (var[c] / n2).sqrt();
+            expected[c] += (2.0 / std::f64::consts::PI).sqrt() * sigma / (rb[c].abs() + BLOCK_REL_EPSILON);
+        }
+    }
+    expected.map(|e| e / ref_blocks.len() as f64)
+}
+
 fn print(name: &str, c: &ImageComparison) {
     eprintln!(
         "{name}: mean ours {:.5?} ref {:.5?} rel diff {:.5?}; block rel err mean {:.5?} max {:.3?}; rel MSE {:.4e}",
@@ -67,11 +105,8 @@ fn print(name: &str, c: &ImageComparison) {
 
 /// Cornell box, 256x256, 128 spp, against Tungsten's 1024x1024 downsampled 4x.
 ///
-/// Bound on the block error: for each 8x8 block and channel, the standard error of our block
-/// mean is sqrt(sum of the pixels' variance of the mean) / 64, from the render's own
-/// per-pixel sample variance; the reference's noise is ignored (it has many more samples).
-/// An unbiased renderer's |block difference| then averages sqrt(2/pi) sigma, so the
-/// expected block relative error is the mean over blocks of sqrt(2/pi) sigma / (|b| + eps).
+/// Bound on the block error: the error expected from our noise ([`expected_block_error`])
+/// plus a margin for the reference's own noise and filter differences.
 ///
 /// Measured (seed 7): block rel err [0.0144, 0.0136, 0.0102] (R, G, B) against
 /// [0.0102, 0.0089, 0.0054] expected from our noise alone: an excess of 0.004-0.005, which
@@ -92,27 +127,7 @@ fn cornell_box_matches_tungsten() {
     let c = ImageComparison::new(&ours, &r.pixels, w, h, BLOCK).unwrap();
     print("cornell-box", &c);
 
-    // Expected block error from noise alone.
-    let (_, _, ref_blocks) = block_means_of(&r.pixels, w, h, BLOCK).unwrap();
-    let mut expected = [0.0f64; 3];
-    for (k, rb) in ref_blocks.iter().enumerate() {
-        let (bx, by) = (k as u32 % (w / BLOCK), k as u32 / (w / BLOCK));
-        let mut var = [0.0f64; 3];
-        for y in by * BLOCK..(by + 1) * BLOCK {
-            for x in bx * BLOCK..(bx + 1) * BLOCK {
-                let v = out.film.pixel(x, y).variance_of_mean();
-                for (c, s) in var.iter_mut().enumerate() {
-                    *s += f64::from(v[c]);
-                }
-            }
-        }
-        let n2 = f64::from(BLOCK * BLOCK).powi(2);
-        for c in 0..3 {
-            let sigma = (var[c] / n2).sqrt();
-            expected[c] += (2.0 / std::f64::consts::PI).sqrt() * sigma / (rb[c].abs() + BLOCK_REL_EPSILON);
-        }
-    }
-    let expected = expected.map(|e| e / ref_blocks.len() as f64);
+    let expected = expected_block_error(&out, &r.pixels, w, h);
     eprintln!("cornell-box: block rel err expected from noise {expected:.5?}");
 
     for ch in 0..3 {
@@ -129,47 +144,99 @@ fn cornell_box_matches_tungsten() {
     }
 }
 
-/// Veach MIS, 320x180, 64 spp, against Tungsten's 1280x720 downsampled 4x.
+/// Veach MIS, 320x180, the file's max depth (3), against Mitsuba 3's render of the same
+/// description (`scenes/references/veach-mis-mitsuba-320x180.exr`, 2048 spp, GGX; how it was
+/// made is in the `.json` beside it). This is the full-image check of the glossy plates; the
+/// Tungsten reference cannot serve (see the next test).
 ///
-/// Known model difference (under investigation): our glossy plates are much brighter than
-/// the reference. Measured at this setting: image means +64% (R), +47% (G), +41% (B),
-/// block relative error averaging ~1.0 with a maximum ~50 (on the plates' highlights); the
-/// back wall region below agrees within 0.8% (measured -0.65%, -0.75%, -0.78%). So we
-/// assert only what holds: the scene loads, renders finite, and the diffuse back wall
-/// (the blocks above the plates, left and right of the light spheres) agrees with the
-/// reference within 5% per channel on average.
+/// Measured (seed 7, 128 spp, the file's Sobol' sampler): means +0.60%/+0.48%/+0.44%; block
+/// rel err [0.0193, 0.0153, 0.0141] against [0.0223, 0.0193, 0.0185] expected from our noise
+/// (overstated: a Sobol' render's sample spread overstates its error). At 1024 spp with the
+/// independent sampler, 15-row bands agree within 1% except the floor below the plates
+/// (+2%), where glossy-to-diffuse paths from the smallest light are noisy in both renders.
+/// Bounds: means within 1.5%, block error below the expected + 0.02 (a 3% bias fails).
 #[test]
-fn veach_mis_renders_and_back_wall_matches() {
+fn veach_mis_matches_mitsuba() {
     let Some(dir) = scenes_dir() else { return };
     let (w, h) = (320, 180);
-    let out = render_scene(&dir.join("veach-mis/scene-v4.pbrt"), w, h, 64);
+    let out = render_scene_at_depth(&dir.join("veach-mis/scene-v4.pbrt"), w, h, 128, None);
+    let ours = out.film.mean_image();
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/references/veach-mis-mitsuba-320x180.exr");
+    let r = reference(&path, w, h);
+    let c = ImageComparison::new(&ours, &r.pixels, w, h, BLOCK).unwrap();
+    print("veach-mis vs Mitsuba", &c);
+    let expected = expected_block_error(&out, &r.pixels, w, h);
+    eprintln!("veach-mis vs Mitsuba: block rel err expected from noise {expected:.5?}");
+    for ch in 0..3 {
+        assert!(
+            c.mean_rel_diff()[ch].abs() < 0.015,
+            "channel {ch}: {:?}",
+            c.mean_rel_diff()
+        );
+        assert!(
+            c.block_rel_mean[ch] < expected[ch] + 0.02,
+            "channel {ch}: block rel err {:?} vs expected from noise {expected:?}",
+            c.block_rel_mean
+        );
+    }
+}
+
+/// Veach MIS against Tungsten's reference: a documented model difference.
+///
+/// The reference does not show the file as written. Reproducing it with Mitsuba 3 from our
+/// loaded description, every band of 30 rows agrees within 1% with Tungsten's image when
+/// Mitsuba is given (1) direct lighting only (max depth 1), (2) a Beckmann instead of a GGX
+/// distribution with the same alphas, and (3) the conductors' reflectance multiplied by
+/// 0.3026 (`bench/mitsuba_scene.py --max-depth 2 --distribution beckmann --conductor-scale
+/// 0.3026`; image means 0.674/0.611/0.593 against Tungsten's 0.673/0.611/0.592). With the
+/// file's settings, Mitsuba and we agree (previous test) and are +62%/+46%/+40% brighter
+/// than Tungsten, all of it on the plates.
+///
+/// What this test pins, rendering ourselves at max depth 1 (difference 1 removed):
+/// - the back wall and the lights (pixel rows 0..56, above the plates) match Tungsten within
+///   1% per channel: emission, sphere lights and diffuse transport agree;
+/// - on the near-mirror plate (alpha 0.01), the reflection of the middle light is Tungsten's
+///   times 1/0.3026 in all three channels alike (measured 0.302-0.303): the same Fresnel
+///   colour, a grey factor of 0.30 (difference 3). Difference 2 (lobe tails: Beckmann's fall
+///   off as exp(-tan^2/alpha^2), GGX's as a power) shows between the highlights of the glossy
+///   plates, where Tungsten is black and GGX is not; it is not asserted here.
+#[test]
+fn veach_mis_tungsten_reference_differs_by_a_documented_factor() {
+    let Some(dir) = scenes_dir() else { return };
+    let (w, h) = (320, 180);
+    let out = render_scene_at_depth(&dir.join("veach-mis/scene-v4.pbrt"), w, h, 64, Some(1));
     let ours = out.film.mean_image();
     let r = reference(&dir.join("veach-mis/TungstenRender.exr"), w, h);
     let c = ImageComparison::new(&ours, &r.pixels, w, h, BLOCK).unwrap();
-    print("veach-mis", &c);
+    print("veach-mis vs Tungsten (max depth 1)", &c);
 
-    // Back wall: block rows 0..7 (pixel rows 0..56, above the plates' top at ~row 65),
-    // block columns 0..16 and 30..40 (left of x = 128 and right of x = 240: clear of the
-    // light spheres, x ~ 145..230).
-    let (bx, _, ob) = block_means_of(&ours, w, h, BLOCK).unwrap();
-    let (_, _, rb) = block_means_of(&r.pixels, w, h, BLOCK).unwrap();
-    let (mut so, mut sr, mut n) = ([0.0f64; 3], [0.0f64; 3], 0usize);
-    let mut worst = [0.0f64; 3];
-    for j in 0..7u32 {
-        for i in (0..16u32).chain(30..40) {
-            let k = (j * bx + i) as usize;
-            for ch in 0..3 {
-                so[ch] += ob[k][ch];
-                sr[ch] += rb[k][ch];
-                worst[ch] = f64::max(worst[ch], (ob[k][ch] - rb[k][ch]).abs() / rb[k][ch]);
+    let region_mean = |img: &[Rgb], x0: u32, x1: u32, y0: u32, y1: u32| -> [f64; 3] {
+        let mut s = [0.0f64; 3];
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let p = img[(y * w + x) as usize];
+                for (ch, v) in s.iter_mut().enumerate() {
+                    *v += f64::from(p[ch]);
+                }
             }
-            n += 1;
         }
-    }
-    let rel: [f64; 3] = std::array::from_fn(|ch| so[ch] / sr[ch] - 1.0);
-    eprintln!("veach-mis: back wall ({n} blocks) mean rel diff {rel:.5?}, worst block {worst:.4?}");
-    for (ch, d) in rel.iter().enumerate() {
-        assert!(d.abs() < 0.05, "back wall channel {ch}: {rel:?}");
+        s.map(|v| v / f64::from((x1 - x0) * (y1 - y0)))
+    };
+    let (wall_ours, wall_ref) = (region_mean(&ours, 0, w, 0, 56), region_mean(&r.pixels, 0, w, 0, 56));
+    let wall: [f64; 3] = std::array::from_fn(|ch| wall_ours[ch] / wall_ref[ch] - 1.0);
+    // The mirror image of the middle light on the top plate: pixels 154..164 x 75..82.
+    let (m_ours, m_ref) = (
+        region_mean(&ours, 154, 164, 75, 82),
+        region_mean(&r.pixels, 154, 164, 75, 82),
+    );
+    let ratio: [f64; 3] = std::array::from_fn(|ch| m_ref[ch] / m_ours[ch]);
+    eprintln!("veach-mis vs Tungsten: wall and lights rel diff {wall:.5?}; mirror-image ratio ref/ours {ratio:.4?}");
+    for ch in 0..3 {
+        assert!(wall[ch].abs() < 0.01, "wall and lights, channel {ch}: {wall:?}");
+        assert!(
+            (ratio[ch] - 0.3026).abs() < 0.01,
+            "mirror image ratio, channel {ch}: {ratio:?}"
+        );
     }
 }
 
