@@ -39,7 +39,7 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     let scale = args.exposure.exp2();
     if scale != 1.0 {
         for p in &mut img.pixels {
-            *p = *p * scale;
+            *p *= scale;
         }
     }
     write_image(&args.output, &img).with_context(|| format!("cannot write \"{}\"", args.output.display()))?;
