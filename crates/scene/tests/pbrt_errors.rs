@@ -281,12 +281,12 @@ fn unsupported_features_are_named() {
         "scene.pbrt:2:1: unknown material type \"shiny\""
     );
     assert_eq!(
-        error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 700 0.5]"),
-        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\" is"
+        error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"metal-Cu-eta\""),
+        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\", \"spectrum reflectance\" as (wavelength, value) pairs and \"blackbody reflectance\" (emission) are"
     );
     assert_eq!(
         error("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"checks\""),
-        "scene.pbrt:2:20: \"texture reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\" is"
+        "scene.pbrt:2:20: \"texture reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\", \"spectrum reflectance\" as (wavelength, value) pairs and \"blackbody reflectance\" (emission) are"
     );
     assert_eq!(
         error("WorldBegin\nTexture \"checks\" \"spectrum\" \"checkerboard\""),
@@ -309,8 +309,8 @@ fn unsupported_features_are_named() {
         "scene.pbrt:1:1: color space \"rec2020\" is not supported yet (only \"srgb\")"
     );
     assert_eq!(
-        error("WorldBegin\nAreaLightSource \"diffuse\" \"blackbody L\" 5500"),
-        "scene.pbrt:2:27: \"blackbody L\" of AreaLightSource \"diffuse\" is not supported yet; only \"rgb L\" is"
+        error("WorldBegin\nMaterial \"diffuse\" \"blackbody reflectance\" 5500"),
+        "scene.pbrt:2:20: \"blackbody reflectance\" of Material \"diffuse\": a blackbody is only accepted as an emission (L or I)"
     );
     assert_eq!(kind("Sampler \"bogus\""), SceneErrorKind::Syntax);
     assert_eq!(

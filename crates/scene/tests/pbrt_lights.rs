@@ -132,6 +132,19 @@ fn uniform_infinite_light_and_illuminance() {
 }
 
 #[test]
+fn blackbody_and_sampled_emission_spectra_have_luminance_one() {
+    let lum = |c: Rgb| 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    let s = load("WorldBegin\nAreaLightSource \"diffuse\" \"blackbody L\" 3000 \"float scale\" 2\nShape \"sphere\"");
+    let l = s.description.shapes[0].area_light.unwrap().radiance;
+    assert!((lum(l) - 2.0).abs() < 0.02 && l.r > l.g && l.g > l.b, "{l:?}");
+    let s = load("WorldBegin\nLightSource \"point\" \"spectrum I\" [ 400 1 700 1 ]");
+    let LightDesc::Point { intensity, .. } = only_light(&s) else {
+        panic!("{:?}", only_light(&s))
+    };
+    assert!((lum(*intensity) - 1.0).abs() < 0.01, "{intensity:?}");
+}
+
+#[test]
 fn area_light_power_is_passed_on() {
     let s = load(
         "WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" 20 \"bool twosided\" true\nShape \"sphere\"",

@@ -34,6 +34,7 @@ use mcrender_core::scene::{AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, Li
 
 use super::builder::SceneBuilder;
 use super::params::{ParamSet, ParamType};
+use super::spectrum_rgb::SpectrumRole;
 use crate::error::{io_error_text, Location, SceneError};
 use crate::image_io::{read_image, ImageError, ImageRgb};
 
@@ -342,6 +343,8 @@ fn non_negative(params: &ParamSet, name: &str, default: f32) -> Result<f32, Scen
 
 /// An emitted colour `name` (default white) times `scale` (default 1); both non-negative.
 ///
+/// Spectra as (wavelength, value) pairs and `blackbody` temperatures become the RGB of
+/// luminance 1 that pbrt-v4's normalisation leaves (see [`super::spectrum_rgb`]).
 /// `"spectrum L" "stdillum-D65"` is accepted too: pbrt normalises an emission spectrum by its
 /// luminance, and the sRGB white point is D65, so it is exactly RGB white.
 fn emission(params: &ParamSet, name: &str) -> Result<Rgb, SceneError> {
@@ -352,7 +355,7 @@ fn emission(params: &ParamSet, name: &str) -> Result<Rgb, SceneError> {
         params.lookup(name, &[ParamType::Spectrum])?;
         Rgb::WHITE
     } else {
-        params.rgb(name, Rgb::WHITE)?
+        params.color(name, Rgb::WHITE, SpectrumRole::Illuminant)?
     };
     if color.to_array().iter().any(|c| *c < 0.0) {
         let loc = params.get(name).map_or(&params.loc, |p| &p.loc);

@@ -10,6 +10,7 @@ use std::cell::Cell;
 use glam::Vec3;
 use mcrender_core::color::Rgb;
 
+use super::spectrum_rgb::{blackbody_rgb, sampled_spectrum, spectrum_to_rgb, SpectrumRole};
 use super::tokenizer::{parse_number, Token, TokenKind};
 use crate::error::{Location, SceneError};
 
@@ -512,34 +513,74 @@ impl ParamSet {
         }))
     }
 
-    /// A single `rgb` colour. The other pbrt forms of a colour (`spectrum`, `blackbody`,
-    /// `texture`) are reported as not supported yet.
+    /// A single colour used as a reflectance: `rgb`, or a `spectrum` of (wavelength, value)
+    /// pairs, or a `blackbody`, converted as [`Self::color`] says for
+    /// [`SpectrumRole::Albedo`].
     ///
     /// # Errors
-    /// Another colour form, any other type, or not exactly one value.
+    /// As [`Self::color`].
     pub fn rgb(&self, name: &str, default: Rgb) -> Result<Rgb, SceneError> {
+        self.color(name, default, SpectrumRole::Albedo)
+    }
+
+    /// A single colour: `rgb` as given; `spectrum` as (wavelength nm, value) pairs, or
+    /// `blackbody` (a temperature in Kelvin), converted to linear sRGB once by `role` (see
+    /// [`super::spectrum_rgb`]). Named spectra and `texture` are left to the callers that
+    /// accept them and reported here as not supported.
+    ///
+    /// # Errors
+    /// Another form or type, not exactly one value, or a malformed spectrum.
+    pub fn color(&self, name: &str, default: Rgb, role: SpectrumRole) -> Result<Rgb, SceneError> {
         let forms = [
             ParamType::Rgb,
             ParamType::Spectrum,
             ParamType::Blackbody,
             ParamType::Texture,
         ];
-        match self.lookup(name, &forms)? {
-            Some(p) if p.ty == ParamType::Rgb => {
+        let Some(p) = self.lookup(name, &forms)? else {
+            return Ok(default);
+        };
+        let bad = |what: String| SceneError::invalid(&p.loc, format!("\"{}\" of {}: {what}", p.decl(), self.owner));
+        match p.ty {
+            ParamType::Rgb => {
                 p.expect_single()?;
                 let v = p.floats();
                 Ok(Rgb::new(v[0], v[1], v[2]))
             }
-            Some(p) => Err(SceneError::unsupported(
+            ParamType::Blackbody => {
+                p.expect_single()?;
+                let c = blackbody_rgb(p.floats()[0]).map_err(bad)?;
+                // A blackbody is an emission spectrum; elsewhere pbrt-v4 uses it as given,
+                // normalised to a peak of 1, which has no RGB meaning without a light.
+                if role == SpectrumRole::Illuminant {
+                    Ok(c)
+                } else {
+                    Err(bad("a blackbody is only accepted as an emission (L or I)".into()))
+                }
+            }
+            ParamType::Spectrum if matches!(p.values, ParamValues::Floats(_)) => {
+                let v = p.floats();
+                if v.len() % 2 != 0 {
+                    return Err(bad(format!(
+                        "expected (wavelength, value) pairs, got {} numbers",
+                        v.len()
+                    )));
+                }
+                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+                let s = sampled_spectrum(&pairs).map_err(bad)?;
+                Ok(spectrum_to_rgb(s, role))
+            }
+            _ => Err(SceneError::unsupported(
                 &p.loc,
                 format!(
-                    "\"{}\" of {} is not supported yet; only \"rgb {}\" is",
+                    "\"{}\" of {} is not supported yet; only \"rgb {}\", \"spectrum {}\" as (wavelength, value) pairs and \"blackbody {}\" (emission) are",
                     p.decl(),
                     self.owner,
+                    p.name,
+                    p.name,
                     p.name
                 ),
             )),
-            None => Ok(default),
         }
     }
 
@@ -668,16 +709,37 @@ mod tests {
     }
 
     #[test]
-    fn other_colour_forms_are_unsupported() {
+    fn sampled_spectra_and_blackbodies_become_rgb() {
         let s = set(&["\"spectrum reflectance\" [300 .3 800 .3]"]);
+        let c = s.rgb("reflectance", Rgb::splat(0.5)).unwrap();
+        assert!((0..3).all(|ch| (c[ch] - 0.3).abs() < 1e-5), "{c:?}");
+        let s = set(&["\"blackbody L\" [ 2700 ]"]);
+        let c = s.color("L", Rgb::WHITE, SpectrumRole::Illuminant).unwrap();
+        assert!(c.r > c.g && c.g > c.b, "{c:?}");
         assert_eq!(
-            s.rgb("reflectance", Rgb::splat(0.5)).unwrap_err().to_string(),
-            "p.pbrt:1:1: \"spectrum reflectance\" of Shape \"sphere\" is not supported yet; only \"rgb reflectance\" is"
+            s.color("L", Rgb::WHITE, SpectrumRole::Albedo).unwrap_err().to_string(),
+            "p.pbrt:1:1: \"blackbody L\" of Shape \"sphere\": a blackbody is only accepted as an emission (L or I)"
         );
+        let s = set(&["\"blackbody L\" [ -5 ]"]);
+        let e = s
+            .color("L", Rgb::WHITE, SpectrumRole::Illuminant)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("p.pbrt:1:1:") && e.contains("must be positive"), "{e}");
+        let s = set(&["\"spectrum reflectance\" [500 .3 400 .3]"]);
+        let e = s.rgb("reflectance", Rgb::WHITE).unwrap_err().to_string();
+        assert!(e.contains("wavelengths must increase"), "{e}");
+    }
+
+    #[test]
+    fn other_colour_forms_are_unsupported() {
         let s = set(&["\"texture reflectance\" \"checks\""]);
         assert!(s.rgb("reflectance", Rgb::splat(0.5)).is_err());
         let s = set(&["\"spectrum eta\" \"metal-Ag-eta\""]);
-        assert!(s.rgb("eta", Rgb::splat(0.5)).is_err());
+        assert_eq!(
+            s.rgb("eta", Rgb::splat(0.5)).unwrap_err().to_string(),
+            "p.pbrt:1:1: \"spectrum eta\" of Shape \"sphere\" is not supported yet; only \"rgb eta\", \"spectrum eta\" as (wavelength, value) pairs and \"blackbody eta\" (emission) are"
+        );
     }
 
     #[test]
