@@ -118,14 +118,6 @@ fn conductor_errors_name_the_parameter() {
         )
     );
     assert_eq!(
-        error("\"conductor\" \"spectrum eta\" [400 1.2 700 0.3]"),
-        (
-            SceneErrorKind::Unsupported,
-            "scene.pbrt:2:22: \"spectrum eta\" of Material \"conductor\" (a spectrum given as wavelength-value pairs) is not supported yet"
-                .to_owned()
-        )
-    );
-    assert_eq!(
         error("\"conductor\" \"texture k\" \"tex\""),
         (
             SceneErrorKind::Unsupported,
@@ -139,6 +131,30 @@ fn conductor_errors_name_the_parameter() {
     assert_eq!(
         error("\"conductor\" \"rgb k\" [1 -1 1]").1,
         "scene.pbrt:2:22: \"rgb k\" of Material \"conductor\" must not be negative"
+    );
+}
+
+#[test]
+fn sampled_spectra_become_rgb() {
+    // A constant index maps to itself; a falling one is higher in blue than in red.
+    let (eta, k, ..) =
+        conductor_parts(&material("\"conductor\" \"spectrum eta\" [400 1.2 700 1.2] \"spectrum k\" [400 3 700 1]").0);
+    assert!((0..3).all(|c| (eta[c] - 1.2).abs() < 1e-5), "{eta:?}");
+    assert!(k.b > k.g && k.g > k.r, "{k:?}");
+    let MaterialDesc::Diffuse { reflectance } = material("\"diffuse\" \"spectrum reflectance\" [300 0.5 800 0.5]").0
+    else {
+        panic!()
+    };
+    assert!((0..3).all(|c| (reflectance[c] - 0.5).abs() < 1e-5), "{reflectance:?}");
+    // A dielectric takes the index at 550 nm, as for the named glasses.
+    let MaterialDesc::Dielectric { eta, .. } = material("\"dielectric\" \"spectrum eta\" [500 1.6 600 1.4]").0 else {
+        panic!()
+    };
+    assert!((eta - 1.5).abs() < 1e-5, "{eta}");
+    let (_, msg) = error("\"dielectric\" \"spectrum eta\" [600 1.6 500 1.4]");
+    assert!(
+        msg.starts_with("scene.pbrt:2:23:") && msg.contains("must increase"),
+        "{msg}"
     );
 }
 

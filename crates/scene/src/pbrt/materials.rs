@@ -23,6 +23,7 @@ use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
 use super::params::{ParamSet, ParamType};
 use super::spectra::{glass_eta, metal_rgb, KNOWN_UNCONVERTED};
+use super::spectrum_rgb::{sampled_spectrum, SpectrumRole};
 use crate::error::{Location, SceneError};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
@@ -247,13 +248,14 @@ fn spectrum_param(params: &ParamSet, name: &str, kind: SpectrumKind) -> Result<O
                     ),
                 )),
             },
-            [] => unsupported("a spectrum given as wavelength-value pairs"),
+            [] => params.color(name, Rgb::WHITE, SpectrumRole::Unbounded).map(Some),
             _ => Err(SceneError::syntax(
                 &p.loc,
                 format!("\"{}\" of {} needs exactly one spectrum name", p.decl(), params.owner),
             )),
         },
-        ParamType::Spectrum => unsupported("a spectrum; give an rgb value"),
+        ParamType::Spectrum if p.strings().is_empty() => params.color(name, Rgb::WHITE, SpectrumRole::Albedo).map(Some),
+        ParamType::Spectrum => unsupported("a named spectrum; give an rgb value or (wavelength, value) pairs"),
         ParamType::Texture => unsupported("textures"),
         _ => unsupported("a blackbody"),
     }
@@ -278,14 +280,18 @@ fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
                     ),
                 )
             })?,
+            [] => {
+                // As for the named glasses: the index at 550 nm.
+                let v = p.floats();
+                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+                let s = sampled_spectrum(&pairs)
+                    .map_err(|e| SceneError::invalid(&p.loc, format!("\"{}\" of {}: {e}", p.decl(), params.owner)))?;
+                s(550.0) as f32
+            }
             _ => {
-                return Err(SceneError::unsupported(
+                return Err(SceneError::syntax(
                     &p.loc,
-                    format!(
-                        "\"{}\" of {} (a spectrum given as wavelength-value pairs) is not supported yet; give a float or a named glass",
-                        p.decl(),
-                        params.owner
-                    ),
+                    format!("\"{}\" of {} needs exactly one spectrum name", p.decl(), params.owner),
                 ))
             }
         },
