@@ -282,15 +282,11 @@ fn unsupported_features_are_named() {
     );
     assert_eq!(
         error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 700 0.5]"),
-        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\" is"
+        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; give \"rgb reflectance\" or \"texture reflectance\""
     );
     assert_eq!(
-        error("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"checks\""),
-        "scene.pbrt:2:20: \"texture reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\" is"
-    );
-    assert_eq!(
-        error("WorldBegin\nTexture \"checks\" \"spectrum\" \"checkerboard\""),
-        "scene.pbrt:2:1: Texture \"checks\" (\"checkerboard\"): textures are not supported yet"
+        error("WorldBegin\nTexture \"n\" \"float\" \"fbm\""),
+        "scene.pbrt:2:21: texture class \"fbm\" (Texture \"n\") is not supported yet"
     );
     assert_eq!(
         error("WorldBegin\nLightSource \"goniometric\""),

@@ -33,6 +33,7 @@ mod params;
 mod parser;
 mod shapes;
 mod spectra;
+mod textures;
 mod tokenizer;
 mod transform;
 

@@ -263,7 +263,7 @@ impl Param {
         }
     }
 
-    fn expect_single(&self) -> Result<(), SceneError> {
+    pub(super) fn expect_single(&self) -> Result<(), SceneError> {
         let n = self.values.len() / self.ty.arity();
         if n == 1 {
             Ok(())
