@@ -26,7 +26,7 @@ pub use checkerboard::{checkerboard_weight, CheckerboardTexture};
 pub use context::TextureContext;
 pub use image::ImageTexture;
 pub use mapping::{TexCoord2D, TextureMapping};
-pub use mipmap::{MipFilter, MipFilterOptions, MipMap, WrapMode};
+pub use mipmap::{MipFilter, MipFilterOptions, MipLevel, MipMap, WrapMode};
 pub use mix::MixTexture;
 pub use scale::ScaleTexture;
 
