@@ -330,3 +330,18 @@ fn footprint_of_a_plane_facing_the_camera_is_the_pixel_size() {
         assert!(rel(dpdx.length(), footprint) < 2e-3);
     }
 }
+
+#[test]
+fn ewa_widens_ellipses_longer_than_max_anisotropy() {
+    let m = MipMap::new(16, 16, &pattern(16, 16), WrapMode::Repeat);
+    let st = Vec2::new(0.4, 0.6);
+    for (aniso, widened) in [(1.0, 0.1), (2.0, 0.05)] {
+        let ewa = MipFilterOptions {
+            filter: MipFilter::Ewa,
+            max_anisotropy: aniso,
+        };
+        let thin = m.filter(&ewa, st, Vec2::new(0.1, 0.0), Vec2::new(0.0, 0.01));
+        let wide = m.filter(&ewa, st, Vec2::new(0.1, 0.0), Vec2::new(0.0, widened));
+        assert!(close(thin, wide, 1e-6), "max anisotropy {aniso}: {thin:?} vs {wide:?}");
+    }
+}
