@@ -330,3 +330,34 @@ fn a_textured_plane_under_a_uniform_sky_has_the_mean_of_its_texture() {
         );
     }
 }
+
+/// Mean over pixels of the variance of the red pixel estimate.
+fn mean_pixel_variance(src: &str) -> f64 {
+    let s = load_str(src, "scene.pbrt", Path::new("")).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Scene::build(&s.description).unwrap();
+    let out = render(&scene, &RenderOptions::default(), &|_, _| {}).unwrap();
+    let pixels = out.film.pixels();
+    pixels.iter().map(|p| f64::from(p.variance_of_mean().r)).sum::<f64>() / pixels.len() as f64
+}
+
+#[test]
+fn pixel_footprints_filter_a_checkerboard_finer_than_the_pixels() {
+    // 16 x 16 pixels over a plane with 256 x 256 checks: 16 per pixel. Filtered over the
+    // pixel footprint, every sample sees about the mean reflectance 0.5, so pixels are
+    // as quiet as on a constant grey plane; point sampling would make each sample 0 or 1.
+    let scene = |material: &str| {
+        format!(
+            "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" 90\n\
+             Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n\
+             Sampler \"independent\" \"integer pixelsamples\" 16\nIntegrator \"path\" \"integer maxdepth\" 1\n\
+             WorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n\
+             Texture \"cb\" \"spectrum\" \"checkerboard\" \"float uscale\" 256 \"float vscale\" 256 \"rgb tex2\" [0 0 0]\n\
+             {material}\n\
+             Shape \"trianglemesh\" \"point3 P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] \"integer indices\" [0 1 2 0 2 3] \"point2 uv\" [1 0  0 0  0 1  1 1]\n"
+        )
+    };
+    let grey = mean_pixel_variance(&scene("Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]"));
+    let checks = mean_pixel_variance(&scene("Material \"diffuse\" \"texture reflectance\" \"cb\""));
+    eprintln!("mean pixel variance: grey {grey:.3e}, filtered checks {checks:.3e}");
+    assert!(checks < 1.5 * grey + 1e-6, "grey {grey:.3e}, checks {checks:.3e}");
+}

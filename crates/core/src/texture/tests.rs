@@ -345,3 +345,45 @@ fn ewa_widens_ellipses_longer_than_max_anisotropy() {
         assert!(close(thin, wide, 1e-6), "max anisotropy {aniso}: {thin:?} vs {wide:?}");
     }
 }
+
+/// At a hit seen from `eye`, moving the point by `eps dp_du` (or `eps dp_dv`) and
+/// re-intersecting changes uv by `(eps, 0)` (or `(0, eps)`), up to O(eps^2).
+fn check_uv_derivatives(shape: &crate::shape::Shape, eye: Vec3, target: Vec3) {
+    use crate::math::Ray;
+    let hit_uv = |p: Vec3| {
+        let ray = Ray::new(eye, (p - eye).normalize());
+        let hit = shape.intersect(&ray, f32::INFINITY).expect("hit");
+        shape.interaction(&ray, &hit)
+    };
+    let si = hit_uv(target);
+    let eps = 1e-3;
+    for (dp, duv) in [(si.dp_du, Vec2::new(eps, 0.0)), (si.dp_dv, Vec2::new(0.0, eps))] {
+        let moved = hit_uv(si.p() + eps * dp);
+        let got = moved.uv - si.uv;
+        assert!((got - duv).abs().max_element() < 5e-5, "{shape:?}: {got} vs {duv}");
+    }
+}
+
+#[test]
+fn dp_du_and_dp_dv_match_the_uv_parameterisation() {
+    use crate::shape::{Disk, Shape, Sphere, Triangle, TriangleMesh};
+    let t = Transform::new(glam::Mat4::from_scale_rotation_translation(
+        Vec3::new(1.0, 2.0, 0.5),
+        glam::Quat::from_rotation_x(0.3),
+        Vec3::new(0.1, 0.2, 0.3),
+    ))
+    .unwrap();
+    let sphere = Shape::Sphere(Sphere::new(1.5, t, false));
+    check_uv_derivatives(&sphere, Vec3::new(5.0, -6.0, 4.0), t.point(Vec3::new(1.0, -0.8, 0.6)));
+    let disk = Shape::Disk(Disk::new(0.2, 2.0, 0.5, 5.0, t, false));
+    check_uv_derivatives(&disk, Vec3::new(0.5, 0.3, 6.0), t.point(Vec3::new(1.0, 0.5, 0.2)));
+    let mesh = std::sync::Arc::new(TriangleMesh {
+        positions: vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.5, 3.0, 1.0)],
+        indices: vec![0, 1, 2],
+        normals: None,
+        uvs: Some(vec![Vec2::new(0.1, 0.2), Vec2::new(0.9, 0.3), Vec2::new(0.2, 0.8)]),
+        flip_normals: false,
+    });
+    let tri = Shape::Triangle(Triangle::new(mesh, 0));
+    check_uv_derivatives(&tri, Vec3::new(0.5, 0.5, 5.0), Vec3::new(0.8, 1.0, 0.33));
+}
