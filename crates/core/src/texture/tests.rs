@@ -387,3 +387,40 @@ fn dp_du_and_dp_dv_match_the_uv_parameterisation() {
     let tri = Shape::Triangle(Triangle::new(mesh, 0));
     check_uv_derivatives(&tri, Vec3::new(0.5, 0.5, 5.0), Vec3::new(0.8, 1.0, 0.33));
 }
+
+#[test]
+fn spherical_cylindrical_and_planar_mappings_at_known_points() {
+    let shift = Transform::new(glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0))).unwrap();
+    let texture_from_world = shift.inverse();
+    let ctx = |p: Vec3| TextureContext {
+        p,
+        dpdx: Vec3::new(0.01, 0.0, 0.0),
+        dpdy: Vec3::new(0.0, 0.0, 0.01),
+        ..TextureContext::default()
+    };
+    let near = |a: f32, b: f32| (a - b).abs() < 1e-5;
+    // Spherical: s = theta / pi, t = phi / 2 pi around the texture-space origin (0, 0, 2).
+    let sph = TextureMapping::Spherical { texture_from_world };
+    let c = sph.map(&ctx(Vec3::new(0.0, 1.0, 2.0)));
+    assert!(near(c.st.x, 0.5) && near(c.st.y, 0.25), "{:?}", c.st);
+    let c = sph.map(&ctx(Vec3::new(1.0, 0.0, 3.0)));
+    assert!(near(c.st.x, 0.25) && near(c.st.y, 0.0), "{:?}", c.st);
+    // At (1, 0, 3) (theta = pi/4), a step +z lowers theta: ds/dy = -(0.01 sin(pi/4)/sqrt 2)/pi.
+    assert!(near(c.dsdy, -0.01 * 0.5 / std::f32::consts::PI), "{}", c.dsdy);
+    // Cylindrical: s = (pi + atan2(y, x)) / 2 pi, t = z.
+    let cyl = TextureMapping::Cylindrical { texture_from_world };
+    let c = cyl.map(&ctx(Vec3::new(0.0, 2.0, 2.5)));
+    assert!(near(c.st.x, 0.75) && near(c.st.y, 0.5), "{:?}", c.st);
+    assert!(near(c.dtdy, 0.01) && near(c.dtdx, 0.0));
+    // Planar: s = ds + p . v1, t = dt + p . v2.
+    let planar = TextureMapping::Planar {
+        texture_from_world,
+        vs: Vec3::new(1.0, 0.0, 0.0),
+        vt: Vec3::new(0.0, 0.0, 2.0),
+        ds: 0.25,
+        dt: 0.5,
+    };
+    let c = planar.map(&ctx(Vec3::new(3.0, 7.0, 2.5)));
+    assert!(near(c.st.x, 3.25) && near(c.st.y, 1.5), "{:?}", c.st);
+    assert!(near(c.dsdx, 0.01) && near(c.dtdy, 0.02) && near(c.dsdy, 0.0));
+}
