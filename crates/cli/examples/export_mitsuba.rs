@@ -13,12 +13,20 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use mcrender_core::math::Vec3;
-use mcrender_core::scene::{GeometryDesc, MaterialDesc};
+use mcrender_core::scene::{FloatTexture, GeometryDesc, MaterialDesc, RgbTexture};
 
 fn material_json(m: &MaterialDesc) -> Result<String> {
+    let rgb = |t: &RgbTexture| match t.constant() {
+        Some(c) => Ok(c.to_array()),
+        None => bail!("no Mitsuba export for textures yet"),
+    };
+    let float = |t: &FloatTexture| match t.constant() {
+        Some(c) => Ok(c),
+        None => bail!("no Mitsuba export for textures yet"),
+    };
     Ok(match m {
         MaterialDesc::Diffuse { reflectance } => {
-            format!(r#"{{"type":"diffuse","reflectance":{:?}}}"#, reflectance.to_array())
+            format!(r#"{{"type":"diffuse","reflectance":{:?}}}"#, rgb(reflectance)?)
         }
         MaterialDesc::Conductor {
             eta,
@@ -31,10 +39,10 @@ fn material_json(m: &MaterialDesc) -> Result<String> {
             let alpha = |r: f32| if *remap_roughness { r.max(0.0).sqrt() } else { r };
             format!(
                 r#"{{"type":"conductor","eta":{:?},"k":{:?},"alpha_u":{},"alpha_v":{}}}"#,
-                eta.to_array(),
-                k.to_array(),
-                alpha(*u_roughness),
-                alpha(*v_roughness)
+                rgb(eta)?,
+                rgb(k)?,
+                alpha(float(u_roughness)?),
+                alpha(float(v_roughness)?)
             )
         }
         other => bail!("no Mitsuba export for {other:?} yet"),

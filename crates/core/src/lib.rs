@@ -20,3 +20,4 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod shape;
+pub mod texture;

@@ -65,10 +65,10 @@ fn base_scene() -> SceneDescription {
     d.sampler.samples_per_pixel = 8;
     d.integrator.max_depth = 3;
     d.materials.push(MaterialDesc::Diffuse {
-        reflectance: Rgb::new(0.7, 0.5, 0.3),
+        reflectance: Rgb::new(0.7, 0.5, 0.3).into(),
     });
     d.materials.push(MaterialDesc::Diffuse {
-        reflectance: Rgb::new(0.2, 0.6, 0.8),
+        reflectance: Rgb::new(0.2, 0.6, 0.8).into(),
     });
     // Floor, and a light above.
     let quad = |y: f32, s: f32, flip: bool| {

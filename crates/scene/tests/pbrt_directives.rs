@@ -155,7 +155,7 @@ fn object_instancing_defines_once_and_places_many_times() {
     assert_eq!(
         d.materials[o.shapes[0].material as usize],
         MaterialDesc::Diffuse {
-            reflectance: Rgb::new(0.1, 0.2, 0.3)
+            reflectance: Rgb::new(0.1, 0.2, 0.3).into()
         }
     );
     assert_ne!(
@@ -209,7 +209,7 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     assert_eq!(
         d.materials[inner.material as usize],
         MaterialDesc::Diffuse {
-            reflectance: Rgb::new(0.1, 0.2, 0.3)
+            reflectance: Rgb::new(0.1, 0.2, 0.3).into()
         }
     );
     assert_eq!(
@@ -226,7 +226,7 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     assert_eq!(
         d.materials[outer.material as usize],
         MaterialDesc::Diffuse {
-            reflectance: Rgb::splat(0.5)
+            reflectance: Rgb::splat(0.5).into()
         }
     );
     assert_eq!(outer.area_light, None);
@@ -295,7 +295,7 @@ fn named_materials_are_resolved_and_deduplicated() {
     assert_eq!(
         d.materials[d.shapes[2].material as usize],
         MaterialDesc::Diffuse {
-            reflectance: Rgb::splat(0.5)
+            reflectance: Rgb::splat(0.5).into()
         }
     );
 }

@@ -282,15 +282,11 @@ fn unsupported_features_are_named() {
     );
     assert_eq!(
         error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"metal-Cu-eta\""),
-        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\", \"spectrum reflectance\" as (wavelength, value) pairs and \"blackbody reflectance\" (emission) are"
+        "scene.pbrt:2:20: \"spectrum reflectance\" of Material \"diffuse\" (a named spectrum) is not supported yet; give \"rgb reflectance\", \"spectrum reflectance\" as (wavelength, value) pairs or \"texture reflectance\""
     );
     assert_eq!(
-        error("WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" \"checks\""),
-        "scene.pbrt:2:20: \"texture reflectance\" of Material \"diffuse\" is not supported yet; only \"rgb reflectance\", \"spectrum reflectance\" as (wavelength, value) pairs and \"blackbody reflectance\" (emission) are"
-    );
-    assert_eq!(
-        error("WorldBegin\nTexture \"checks\" \"spectrum\" \"checkerboard\""),
-        "scene.pbrt:2:1: Texture \"checks\" (\"checkerboard\"): textures are not supported yet"
+        error("WorldBegin\nTexture \"n\" \"float\" \"fbm\""),
+        "scene.pbrt:2:21: texture class \"fbm\" (Texture \"n\") is not supported yet"
     );
     assert_eq!(
         error("WorldBegin\nLightSource \"goniometric\""),

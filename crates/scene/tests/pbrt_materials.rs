@@ -24,7 +24,7 @@ fn error(decl: &str) -> (SceneErrorKind, String) {
 }
 
 fn conductor_parts(m: &MaterialDesc) -> (Rgb, Rgb, Option<Rgb>, f32, f32, bool) {
-    match *m {
+    match m {
         MaterialDesc::Conductor {
             eta,
             k,
@@ -32,7 +32,14 @@ fn conductor_parts(m: &MaterialDesc) -> (Rgb, Rgb, Option<Rgb>, f32, f32, bool) 
             u_roughness,
             v_roughness,
             remap_roughness,
-        } => (eta, k, reflectance, u_roughness, v_roughness, remap_roughness),
+        } => (
+            eta.constant().unwrap(),
+            k.constant().unwrap(),
+            reflectance.as_ref().map(|r| r.constant().unwrap()),
+            u_roughness.constant().unwrap(),
+            v_roughness.constant().unwrap(),
+            *remap_roughness,
+        ),
         _ => panic!("not a conductor: {m:?}"),
     }
 }
@@ -120,8 +127,8 @@ fn conductor_errors_name_the_parameter() {
     assert_eq!(
         error("\"conductor\" \"texture k\" \"tex\""),
         (
-            SceneErrorKind::Unsupported,
-            "scene.pbrt:2:22: \"texture k\" of Material \"conductor\" (textures) is not supported yet".to_owned()
+            SceneErrorKind::Invalid,
+            "scene.pbrt:2:22: \"texture k\" of Material \"conductor\" refers to texture \"tex\", which is not defined (define it with Texture \"tex\" \"spectrum\" ... first)".to_owned()
         )
     );
     assert_eq!(
@@ -145,6 +152,7 @@ fn sampled_spectra_become_rgb() {
     else {
         panic!()
     };
+    let reflectance = reflectance.constant().unwrap();
     assert!((0..3).all(|c| (reflectance[c] - 0.5).abs() < 1e-5), "{reflectance:?}");
     // A dielectric takes the index at 550 nm, as for the named glasses.
     let MaterialDesc::Dielectric { eta, .. } = material("\"dielectric\" \"spectrum eta\" [500 1.6 600 1.4]").0 else {
@@ -190,8 +198,8 @@ fn dielectric_roughness() {
         m,
         MaterialDesc::Dielectric {
             eta: 1.5,
-            u_roughness: 0.1,
-            v_roughness: 0.4,
+            u_roughness: 0.1.into(),
+            v_roughness: 0.4.into(),
             remap_roughness: true
         }
     );
@@ -209,16 +217,16 @@ fn diffuse_transmission_parameters() {
     assert_eq!(
         material("\"diffusetransmission\"").0,
         MaterialDesc::DiffuseTransmission {
-            reflectance: Rgb::splat(0.25),
-            transmittance: Rgb::splat(0.25),
+            reflectance: Rgb::splat(0.25).into(),
+            transmittance: Rgb::splat(0.25).into(),
             scale: 1.0
         }
     );
     assert_eq!(
         material("\"diffusetransmission\" \"rgb reflectance\" [0.1 0.2 0.3] \"rgb transmittance\" [0.4 0.5 0.6] \"float scale\" 1.5").0,
         MaterialDesc::DiffuseTransmission {
-            reflectance: Rgb::new(0.1, 0.2, 0.3),
-            transmittance: Rgb::new(0.4, 0.5, 0.6),
+            reflectance: Rgb::new(0.1, 0.2, 0.3).into(),
+            transmittance: Rgb::new(0.4, 0.5, 0.6).into(),
             scale: 1.5
         }
     );

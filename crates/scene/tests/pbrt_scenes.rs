@@ -53,7 +53,7 @@ fn check_cornell(loaded: &LoadedScene) {
     assert_eq!(
         d.materials[light_shape.material as usize],
         MaterialDesc::Diffuse {
-            reflectance: Rgb::BLACK
+            reflectance: Rgb::BLACK.into()
         }
     );
     let GeometryDesc::TriangleMesh(mesh) = &light_shape.geometry else {
@@ -70,7 +70,7 @@ fn check_cornell(loaded: &LoadedScene) {
     // Left wall, right wall, the shared grey, and the light's black.
     assert_eq!(d.materials.len(), 4);
     assert!(d.materials.contains(&MaterialDesc::Diffuse {
-        reflectance: Rgb::new(0.63, 0.065, 0.05)
+        reflectance: Rgb::new(0.63, 0.065, 0.05).into()
     }));
     let total_triangles: usize = d
         .shapes
@@ -150,7 +150,7 @@ fn veach_mis_loads_with_its_conductor_plates() {
     let plates: Vec<f32> = d
         .materials
         .iter()
-        .filter_map(|m| match *m {
+        .filter_map(|m| match m.clone() {
             MaterialDesc::Conductor {
                 eta,
                 k,
@@ -159,10 +159,10 @@ fn veach_mis_loads_with_its_conductor_plates() {
                 v_roughness,
                 remap_roughness: false,
             } => {
-                assert_eq!(eta, Rgb::new(0.200438, 0.924033, 1.102212));
-                assert_eq!(k, Rgb::new(3.912949, 2.452848, 2.142188));
+                assert_eq!(eta, Rgb::new(0.200438, 0.924033, 1.102212).into());
+                assert_eq!(k, Rgb::new(3.912949, 2.452848, 2.142188).into());
                 assert_eq!(u_roughness, v_roughness);
-                Some(u_roughness)
+                u_roughness.constant()
             }
             _ => None,
         })

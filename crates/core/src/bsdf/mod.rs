@@ -103,6 +103,12 @@ pub struct Bsdf {
 }
 
 impl Bsdf {
+    /// The lobe in the local frame.
+    #[must_use]
+    pub fn bxdf(&self) -> &Bxdf {
+        &self.bxdf
+    }
+
     /// A BSDF with shading normal `ns` and tangent `dpdu`.
     #[must_use]
     pub fn new(ns: Vec3, dpdu: Vec3, bxdf: Bxdf) -> Self {

@@ -4,7 +4,7 @@ mod perspective;
 
 pub use perspective::PerspectiveCamera;
 
-use crate::math::{Ray, Vec2};
+use crate::math::{Ray, Vec2, Vec3};
 
 /// The closed set of cameras.
 #[derive(Clone, Debug)]
@@ -20,6 +20,16 @@ impl Camera {
     pub fn generate_ray(&self, p_film: Vec2, u_lens: Vec2) -> Ray {
         match self {
             Self::Perspective(c) => c.generate_ray(p_film, u_lens),
+        }
+    }
+
+    /// The change of the surface point `p` with normal `n` per pixel step in x and y on
+    /// the image, for a render with `samples_per_pixel` samples (pbrt-v4
+    /// `Approximate_dp_dxy`; see [`PerspectiveCamera::approximate_dp_dxy`]).
+    #[must_use]
+    pub fn approximate_dp_dxy(&self, p: Vec3, n: Vec3, samples_per_pixel: u32) -> (Vec3, Vec3) {
+        match self {
+            Self::Perspective(c) => c.approximate_dp_dxy(p, n, samples_per_pixel),
         }
     }
 }

@@ -3,7 +3,7 @@
 //! downwards while camera +y is up; the camera looks down +z. A thin lens of `lens_radius`
 //! focuses at `focal_distance`.
 
-use crate::math::{Ray, Transform, Vec2, Vec3};
+use crate::math::{Frame, Ray, Transform, Vec2, Vec3};
 use crate::sampling::sample_uniform_disk_concentric;
 use crate::scene::{CameraDesc, FilmDesc};
 
@@ -11,6 +11,10 @@ use crate::scene::{CameraDesc, FilmDesc};
 #[derive(Clone, Debug)]
 pub struct PerspectiveCamera {
     world_from_camera: Transform,
+    camera_from_world: Transform,
+    /// Smallest change of the unit ray direction per pixel step in x and y over the image,
+    /// in a frame whose z axis is the ray (pbrt-v4 `minDirDifferentialX/Y`).
+    min_dir_differential: [Vec3; 2],
     /// Screen window `[x_min, x_max, y_min, y_max]`.
     screen: [f32; 4],
     resolution: Vec2,
@@ -29,23 +33,88 @@ impl PerspectiveCamera {
         } else {
             [-1.0, 1.0, -1.0 / aspect, 1.0 / aspect]
         });
-        Self {
+        let mut camera = Self {
             world_from_camera: desc.world_from_camera,
+            camera_from_world: desc.world_from_camera.inverse(),
+            min_dir_differential: [Vec3::ZERO; 2],
             screen,
             resolution: Vec2::new(film.width as f32, film.height as f32),
             tan_half_fov: (desc.fov_degrees.to_radians() * 0.5).tan(),
             lens_radius: desc.lens_radius,
             focal_distance: desc.focal_distance,
+        };
+        camera.min_dir_differential = camera.find_minimum_differentials();
+        camera
+    }
+
+    /// Camera-space direction (not normalised) through raster position `p_film`, from the
+    /// lens centre.
+    fn camera_direction(&self, p_film: Vec2) -> Vec3 {
+        let [x0, x1, y0, y1] = self.screen;
+        let sx = x0 + p_film.x / self.resolution.x * (x1 - x0);
+        let sy = y1 - p_film.y / self.resolution.y * (y1 - y0);
+        Vec3::new(sx * self.tan_half_fov, sy * self.tan_half_fov, 1.0)
+    }
+
+    /// pbrt-v4 `CameraBase::FindMinimumDifferentials`: over 512 points along the image
+    /// diagonal, the shortest change of the unit ray direction for a one-pixel step in x
+    /// and in y, expressed in a frame whose z axis is the ray. Rays from the lens centre
+    /// (pbrt's lens sample (0.5, 0.5)) all start at the origin, so the position
+    /// differentials are zero and left out.
+    fn find_minimum_differentials(&self) -> [Vec3; 2] {
+        const N: usize = 512;
+        let mut min = [Vec3::splat(f32::INFINITY); 2];
+        for i in 0..N {
+            let p = self.resolution * (i as f32 / (N - 1) as f32);
+            let d = self.camera_direction(p).normalize();
+            let frame = Frame::from_z(d);
+            for (axis, step) in [Vec2::X, Vec2::Y].into_iter().enumerate() {
+                let dd = frame.to_local(self.camera_direction(p + step).normalize()) - Vec3::Z;
+                if dd.length_squared() < min[axis].length_squared() {
+                    min[axis] = dd;
+                }
+            }
         }
+        min
+    }
+
+    /// pbrt-v4 `CameraBase::Approximate_dp_dxy`: the change of a surface point `p` (normal
+    /// `n`) per pixel step in x and y, from the camera's minimal ray differentials turned
+    /// towards `p` and intersected with the tangent plane at `p`, scaled by
+    /// `max(1/8, 1/sqrt(spp))` as pbrt scales its ray differentials. pbrt rotates `p` onto
+    /// +z with `RotateFromTo`; we use [`Frame::from_z`], which differs by a roll about the
+    /// ray.
+    #[must_use]
+    pub fn approximate_dp_dxy(&self, p: Vec3, n: Vec3, samples_per_pixel: u32) -> (Vec3, Vec3) {
+        let p_camera = self.camera_from_world.point(p);
+        let Some(dir) = p_camera.try_normalize() else {
+            return (Vec3::ZERO, Vec3::ZERO);
+        };
+        let down_z = Frame::from_z(dir);
+        let p_down_z = down_z.to_local(p_camera);
+        let n_down_z = down_z.to_local(self.camera_from_world.normal(n));
+        let d = n_down_z.z * p_down_z.z;
+        let spp_scale = (1.0 / (samples_per_pixel.max(1) as f32).sqrt()).max(0.125);
+        let footprint = |dir_differential: Vec3| {
+            let ray_d = Vec3::Z + dir_differential;
+            let t = d / n_down_z.dot(ray_d);
+            let dp = ray_d * t - p_down_z;
+            if dp.is_finite() {
+                spp_scale * self.world_from_camera.vector(down_z.from_local(dp))
+            } else {
+                Vec3::ZERO
+            }
+        };
+        (
+            footprint(self.min_dir_differential[0]),
+            footprint(self.min_dir_differential[1]),
+        )
     }
 
     /// The ray through raster position `p_film`.
     #[must_use]
     pub fn generate_ray(&self, p_film: Vec2, u_lens: Vec2) -> Ray {
-        let [x0, x1, y0, y1] = self.screen;
-        let sx = x0 + p_film.x / self.resolution.x * (x1 - x0);
-        let sy = y1 - p_film.y / self.resolution.y * (y1 - y0);
-        let dir = Vec3::new(sx * self.tan_half_fov, sy * self.tan_half_fov, 1.0);
+        let dir = self.camera_direction(p_film);
         let (o, d) = if self.lens_radius > 0.0 {
             // Thin lens: aim through the point on the plane of focus.
             let p_lens = self.lens_radius * sample_uniform_disk_concentric(u_lens);

@@ -81,7 +81,7 @@ impl PathIntegrator {
             }
 
             // Get the BSDF; stop at the depth limit.
-            let bsdf = scene.materials[prim.material as usize].bsdf(&si);
+            let bsdf = scene.bsdf(prim.material, &si);
             if depth == self.max_depth {
                 break;
             }

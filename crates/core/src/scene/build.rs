@@ -5,8 +5,8 @@
 use std::sync::Arc;
 
 use super::{
-    EnvMapping, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, Scene, SceneDescription,
-    ShapeDesc,
+    EnvMapping, FloatTexture, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, RgbTexture,
+    Scene, SceneDescription, ShapeDesc,
 };
 use crate::accel::Bvh;
 use crate::camera::{Camera, PerspectiveCamera};
@@ -113,7 +113,7 @@ impl SceneDescription {
         for (i, m) in self.materials.iter().enumerate() {
             match m {
                 MaterialDesc::Diffuse { reflectance } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
+                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
                 }
                 MaterialDesc::Conductor {
                     eta,
@@ -123,12 +123,15 @@ impl SceneDescription {
                     v_roughness,
                     ..
                 } => {
-                    check_non_negative(&format!("eta of material {i}"), &eta.to_array())?;
-                    check_non_negative(&format!("k of material {i}"), &k.to_array())?;
+                    check_non_negative(&format!("eta of material {i}"), &rgb_constant(eta))?;
+                    check_non_negative(&format!("k of material {i}"), &rgb_constant(k))?;
                     if let Some(r) = reflectance {
-                        check_non_negative(&format!("reflectance of material {i}"), &r.to_array())?;
+                        check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(r))?;
                     }
-                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                    check_non_negative(
+                        &format!("roughness of material {i}"),
+                        &float_constants(&[u_roughness, v_roughness]),
+                    )?;
                 }
                 MaterialDesc::Dielectric {
                     eta,
@@ -137,7 +140,10 @@ impl SceneDescription {
                     ..
                 } => {
                     check_positive_eta(i, *eta)?;
-                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                    check_non_negative(
+                        &format!("roughness of material {i}"),
+                        &float_constants(&[u_roughness, v_roughness]),
+                    )?;
                 }
                 MaterialDesc::ThinDielectric { eta } => check_positive_eta(i, *eta)?,
                 MaterialDesc::DiffuseTransmission {
@@ -145,8 +151,8 @@ impl SceneDescription {
                     transmittance,
                     scale,
                 } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
-                    check_non_negative(&format!("transmittance of material {i}"), &transmittance.to_array())?;
+                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
+                    check_non_negative(&format!("transmittance of material {i}"), &rgb_constant(transmittance))?;
                     check_non_negative(&format!("scale of material {i}"), &[*scale])?;
                 }
             }
@@ -383,6 +389,17 @@ fn validate_light(i: usize, l: &LightDesc) -> Result<(), BuildError> {
         }
     }
     Ok(())
+}
+
+/// The channels of a constant texture (nothing for other textures, whose values are
+/// checked where they are built: images are decoded from files, the rest combine those).
+fn rgb_constant(t: &RgbTexture) -> Vec<f32> {
+    t.constant().map(|c| c.to_array().to_vec()).unwrap_or_default()
+}
+
+/// The values of the constant textures among `ts`.
+fn float_constants(ts: &[&FloatTexture]) -> Vec<f32> {
+    ts.iter().filter_map(|t| t.constant()).collect()
 }
 
 fn check_positive_eta(material: usize, eta: f32) -> Result<(), BuildError> {

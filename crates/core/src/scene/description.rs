@@ -6,6 +6,7 @@
 use crate::color::Rgb;
 pub use crate::light::EnvMapping;
 use crate::math::{Transform, Vec2, Vec3};
+pub use crate::texture::{FloatTexture, RgbTexture};
 
 /// Index into [`SceneDescription::materials`].
 pub type MaterialId = u32;
@@ -278,29 +279,30 @@ impl Default for IntegratorDesc {
     }
 }
 
-/// A material.
+/// A material. Texturable parameters (as in pbrt-v4) are [`RgbTexture`]s or
+/// [`FloatTexture`]s; constants convert with `.into()` (`Rgb::splat(0.5).into()`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MaterialDesc {
     /// Lambertian reflection (pbrt `diffuse`), reflecting on both sides.
     Diffuse {
-        /// Albedo in [0, 1].
-        reflectance: Rgb,
+        /// Albedo, clamped to [0, 1] where evaluated.
+        reflectance: RgbTexture,
     },
     /// A metal (pbrt `conductor`): a mirror, or a Trowbridge-Reitz microfacet surface when
     /// rough, with Fresnel from a complex index of refraction per channel.
     Conductor {
         /// Real part of the index of refraction (relative to the outside), per channel.
-        eta: Rgb,
+        eta: RgbTexture,
         /// Imaginary part (absorption), per channel.
-        k: Rgb,
+        k: RgbTexture,
         /// When given, replaces `eta` and `k` as pbrt does: `eta = 1`,
         /// `k = 2 sqrt(r) / sqrt(1 - r)`, the index whose normal-incidence reflectance is
         /// `r` (clamped to [0, 0.9999]).
-        reflectance: Option<Rgb>,
+        reflectance: Option<RgbTexture>,
         /// Roughness along the shading tangent (`dpdu`).
-        u_roughness: f32,
+        u_roughness: FloatTexture,
         /// Roughness along the bitangent.
-        v_roughness: f32,
+        v_roughness: FloatTexture,
         /// Map roughness to microfacet alpha by `sqrt` (pbrt's `remaproughness`, default
         /// true); otherwise the roughness is alpha itself.
         remap_roughness: bool,
@@ -311,9 +313,9 @@ pub enum MaterialDesc {
         /// the outside; 1 passes light straight through.
         eta: f32,
         /// Roughness along the shading tangent.
-        u_roughness: f32,
+        u_roughness: FloatTexture,
         /// Roughness along the bitangent.
-        v_roughness: f32,
+        v_roughness: FloatTexture,
         /// As for [`MaterialDesc::Conductor`].
         remap_roughness: bool,
     },
@@ -326,9 +328,9 @@ pub enum MaterialDesc {
     /// Lambertian reflection and transmission (pbrt `diffusetransmission`).
     DiffuseTransmission {
         /// Reflectance (clamped to [0, 1] after scaling).
-        reflectance: Rgb,
+        reflectance: RgbTexture,
         /// Transmittance (clamped to [0, 1] after scaling).
-        transmittance: Rgb,
+        transmittance: RgbTexture,
         /// Factor applied to both.
         scale: f32,
     },

@@ -117,6 +117,8 @@ impl Instance {
             intr: crate::shape::Interaction { p, p_error, n },
             ns,
             dpdu,
+            dp_du: t.vector(si.dp_du),
+            dp_dv: t.vector(si.dp_dv),
             uv: si.uv,
             wo: -ray.d.normalize(),
             t: si.t,

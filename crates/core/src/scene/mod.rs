@@ -10,12 +10,14 @@ pub use description::*;
 pub use instance::{Instance, ObjectGeometry};
 
 use crate::accel::Bvh;
+use crate::bsdf::Bsdf;
 use crate::camera::Camera;
 use crate::film::Filter;
 use crate::light::{Light, PowerLightSampler};
 use crate::material::Material;
 use crate::math::Ray;
 use crate::shape::{Interaction, Shape, SurfaceInteraction};
+use crate::texture::TextureContext;
 
 /// A shape with what it is made of.
 #[derive(Clone, Debug)]
@@ -67,6 +69,23 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The BSDF of `material` at `si`. Textured materials are evaluated with the pixel
+    /// footprint at `si` (pbrt-v4 `Approximate_dp_dxy` from the camera, then
+    /// `ComputeDifferentials`), at every path vertex; other materials skip that work.
+    #[must_use]
+    pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Bsdf {
+        let m = &self.materials[material as usize];
+        let ctx = if m.is_textured() {
+            let (dpdx, dpdy) = self
+                .camera
+                .approximate_dp_dxy(si.p(), si.n(), self.sampler.samples_per_pixel);
+            TextureContext::with_footprint(si, dpdx, dpdy)
+        } else {
+            TextureContext::at_point(si)
+        };
+        m.bsdf(si, &ctx)
+    }
+
     /// Closest hit along `ray` (for `t` in `(0, inf)`).
     #[must_use]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit<'_>> {

@@ -126,11 +126,21 @@ impl Disk {
         let uv = Vec2::new(if self.phi_max > 0.0 { phi / self.phi_max } else { 0.0 }, v);
         let n = self.n;
         let dpdu = self.world_from_object.vector(Vec3::new(-p_obj.y, p_obj.x, 0.0));
+        // pbrt-v4 section 6.5.1: dp/du = phi_max (-y, x, 0), dp/dv = (x, y, 0) (r_i - r) / r.
+        let dp_du = self.phi_max * dpdu;
+        let dp_dv = if r_hit > 0.0 {
+            self.world_from_object
+                .vector(Vec3::new(p_obj.x, p_obj.y, 0.0) * ((self.inner_radius - self.radius) / r_hit))
+        } else {
+            Vec3::ZERO
+        };
         let dpdu = crate::math::Frame::from_zx(n, dpdu).x;
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns: n,
             dpdu,
+            dp_du,
+            dp_dv,
             uv,
             wo,
             t,

@@ -60,6 +60,11 @@ pub struct SurfaceInteraction {
     pub ns: Vec3,
     /// Unit tangent along increasing `u`, for anisotropic shading frames.
     pub dpdu: Vec3,
+    /// Unnormalised partial derivative of the point with respect to `u` (pbrt's `dpdu`),
+    /// for texture footprints; not used for shading.
+    pub dp_du: Vec3,
+    /// Unnormalised partial derivative of the point with respect to `v` (pbrt's `dpdv`).
+    pub dp_dv: Vec3,
     /// Surface parameterisation.
     pub uv: Vec2,
     /// Unit direction back along the incoming ray.

@@ -118,11 +118,24 @@ impl Sphere {
         let uv = Vec2::new(phi / (2.0 * PI), (PI - cos_theta.acos()) / PI);
         let dpdu_obj = Vec3::new(-p_obj.y, p_obj.x, 0.0);
         let dpdu = self.world_from_object.vector(dpdu_obj);
+        // pbrt-v4 eq. 6.3-6.4 with phi_max = 2 pi, theta from pi (v = 0) to 0 (v = 1).
+        let dp_du = 2.0 * PI * dpdu;
+        let r_xy = (p_obj.x * p_obj.x + p_obj.y * p_obj.y).sqrt();
+        let (cos_phi, sin_phi) = if r_xy > 0.0 {
+            (p_obj.x / r_xy, p_obj.y / r_xy)
+        } else {
+            (1.0, 0.0)
+        };
+        let dp_dv = self
+            .world_from_object
+            .vector(-PI * Vec3::new(p_obj.z * cos_phi, p_obj.z * sin_phi, -r_xy));
         let dpdu = crate::math::Frame::from_zx(n, dpdu).x;
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns: n,
             dpdu,
+            dp_du,
+            dp_dv,
             uv,
             wo,
             t,

@@ -180,16 +180,28 @@ impl Triangle {
         let duv12 = uv1 - uv2;
         let (dp02, dp12) = (p0 - p2, p1 - p2);
         let det = duv02.x * duv12.y - duv02.y * duv12.x;
-        let dpdu = if det.abs() > 1e-9 {
-            (duv12.y * dp02 - duv02.y * dp12) / det
+        let (dp_du, dp_dv) = if det.abs() > 1e-9 {
+            (
+                (duv12.y * dp02 - duv02.y * dp12) / det,
+                (duv02.x * dp12 - duv12.x * dp02) / det,
+            )
         } else {
-            Vec3::ZERO
+            (Vec3::ZERO, Vec3::ZERO)
         };
-        let dpdu = Frame::from_zx(ns, dpdu).x;
+        let dpdu = Frame::from_zx(ns, dp_du).x;
+        // Degenerate uvs: any tangents, as pbrt-v4's CoordinateSystem(n).
+        let (dp_du, dp_dv) = if dp_du.cross(dp_dv).length_squared() == 0.0 {
+            let f = Frame::from_z(n);
+            (f.x, f.y)
+        } else {
+            (dp_du, dp_dv)
+        };
         SurfaceInteraction {
             intr: Interaction { p, p_error, n },
             ns,
             dpdu,
+            dp_du,
+            dp_dv,
             uv,
             wo,
             t,

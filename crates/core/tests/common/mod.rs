@@ -21,7 +21,7 @@ pub fn empty_scene() -> SceneDescription {
         },
         integrator: IntegratorDesc::default(),
         materials: vec![MaterialDesc::Diffuse {
-            reflectance: Rgb::BLACK,
+            reflectance: Rgb::BLACK.into(),
         }],
         shapes: vec![],
         lights: vec![],
@@ -39,7 +39,9 @@ pub fn inside_sphere_scene(
     inward: bool,
 ) -> SceneDescription {
     let mut d = empty_scene();
-    d.materials.push(MaterialDesc::Diffuse { reflectance: albedo });
+    d.materials.push(MaterialDesc::Diffuse {
+        reflectance: albedo.into(),
+    });
     d.camera.fov_degrees = 60.0;
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::Sphere {
@@ -56,7 +58,7 @@ pub fn inside_sphere_scene(
 /// A 0.2 x 0.2 diffuse square at the origin facing +y.
 pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
     d.materials.push(MaterialDesc::Diffuse {
-        reflectance: Rgb::splat(albedo),
+        reflectance: Rgb::splat(albedo).into(),
     });
     let s = 0.1;
     d.shapes.push(ShapeDesc {

@@ -16,7 +16,7 @@ use mcrender_core::color::Rgb;
 
 pub use self::exr::{read_exr, write_exr_layers};
 pub use self::pfm::read_pfm;
-pub use self::read::read_image;
+pub use self::read::{read_image, read_image_encoded, ColorEncoding};
 
 /// A linear RGB image, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]

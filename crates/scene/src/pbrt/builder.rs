@@ -56,6 +56,8 @@ pub struct SceneBuilder {
     pub(super) integrator: IntegratorDesc,
     pub(super) output_filename: Option<String>,
     pub(super) named_materials: HashMap<String, (MaterialDesc, Location)>,
+    /// Named textures and the MIP maps of the images read.
+    pub(super) textures: super::textures::NamedTextures,
     pub(super) shapes: Vec<(ShapeDesc, MaterialRef)>,
     pub(super) lights: Vec<LightDesc>,
     /// Defined objects, by index; [`Self::object_ids`] maps names to indices.
@@ -87,6 +89,7 @@ impl SceneBuilder {
             option_seed: None,
             integrator: IntegratorDesc::default(),
             output_filename: None,
+            textures: super::textures::NamedTextures::default(),
             named_materials: HashMap::new(),
             shapes: Vec::new(),
             lights: Vec::new(),

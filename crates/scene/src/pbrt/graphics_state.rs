@@ -62,7 +62,7 @@ impl Default for GraphicsState {
             reverse_orientation: false,
             // pbrt-v4's material before any Material directive: diffuse, reflectance 0.5.
             material: MaterialRef::Inline(MaterialDesc::Diffuse {
-                reflectance: Rgb::splat(0.5),
+                reflectance: Rgb::splat(0.5).into(),
             }),
             area_light: None,
             attributes: Attributes::default(),

@@ -1,8 +1,10 @@
-//! Materials: `Material`, `MakeNamedMaterial`, `NamedMaterial` (and `Texture`, which is
-//! not supported yet).
+//! Materials: `Material`, `MakeNamedMaterial`, `NamedMaterial`.
 //!
-//! Supported pbrt-v4 material types, with constant (untextured) parameters:
-//! - `diffuse`: `rgb reflectance` (default 0.5).
+//! Supported pbrt-v4 material types. Every parameter pbrt-v4 textures may also be given as
+//! `"texture name" "tex"` naming a texture of the right type (see [`super::textures`]):
+//! reflectances, conductor `eta`/`k`, roughnesses. Dielectric `eta` stays a constant, as in
+//! pbrt-v4. `displacement` and `normalmap` are warned about and ignored.
+//! - `diffuse`: `reflectance` (default 0.5).
 //! - `conductor`: `eta` and `k` as `rgb` or as a named spectrum (`metal-Cu-eta`,
 //!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`super::spectra`]), default copper; or
 //!   `rgb reflectance` instead of both; `float roughness` or `uroughness`/`vroughness`
@@ -17,7 +19,7 @@
 //! `subsurface` are reported as not supported yet.
 
 use mcrender_core::color::Rgb;
-use mcrender_core::scene::MaterialDesc;
+use mcrender_core::scene::{FloatTexture, MaterialDesc, RgbTexture};
 
 use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
@@ -75,15 +77,6 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// `Texture "name" "type" "class" ...`: not supported yet.
-    pub fn texture(&mut self, name: &str, class: &str, loc: &Location) -> Result<(), SceneError> {
-        self.require_world("Texture", loc)?;
-        Err(SceneError::unsupported(
-            loc,
-            format!("Texture \"{name}\" (\"{class}\"): textures are not supported yet"),
-        ))
-    }
-
     /// The material of `kind` from `params`; `loc` is where the type was named.
     fn material_desc(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<MaterialDesc, SceneError> {
         let context = if params.owner.starts_with("MakeNamedMaterial") {
@@ -93,8 +86,14 @@ impl SceneBuilder {
         };
         match kind {
             "diffuse" => {
-                let reflectance = params.rgb("reflectance", Rgb::splat(0.5))?;
-                if reflectance.to_array().iter().any(|c| !(0.0..=1.0).contains(c)) {
+                let reflectance = self
+                    .textures
+                    .rgb(params, "reflectance")?
+                    .unwrap_or_else(|| Rgb::splat(0.5).into());
+                if let Some(reflectance) = reflectance
+                    .constant()
+                    .filter(|r| r.to_array().iter().any(|c| !(0.0..=1.0).contains(c)))
+                {
                     let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
                     return Err(SceneError::invalid(
                         p,
@@ -108,9 +107,9 @@ impl SceneBuilder {
                 Ok(MaterialDesc::Diffuse { reflectance })
             }
             "conductor" => {
-                let reflectance = spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
-                let eta = spectrum_param(params, "eta", SpectrumKind::MetalIndex)?;
-                let k = spectrum_param(params, "k", SpectrumKind::MetalIndex)?;
+                let reflectance = self.spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
+                let eta = self.spectrum_param(params, "eta", SpectrumKind::MetalIndex)?;
+                let k = self.spectrum_param(params, "k", SpectrumKind::MetalIndex)?;
                 if reflectance.is_some() && (eta.is_some() || k.is_some()) {
                     let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
                     return Err(SceneError::invalid(
@@ -121,15 +120,15 @@ impl SceneBuilder {
                         ),
                     ));
                 }
-                if let Some(r) = reflectance {
+                if let Some(r) = reflectance.as_ref().and_then(RgbTexture::constant) {
                     check_unit_interval(params, "reflectance", r)?;
                 }
-                let (u_roughness, v_roughness) = roughness(params)?;
+                let (u_roughness, v_roughness) = self.roughness(params)?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 self.warn_unused(params);
                 Ok(MaterialDesc::Conductor {
-                    eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE)),
-                    k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK)),
+                    eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE).into()),
+                    k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK).into()),
                     reflectance,
                     u_roughness,
                     v_roughness,
@@ -138,7 +137,7 @@ impl SceneBuilder {
             }
             "dielectric" => {
                 let eta = dielectric_eta(params)?;
-                let (u_roughness, v_roughness) = roughness(params)?;
+                let (u_roughness, v_roughness) = self.roughness(params)?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 self.warn_unused(params);
                 Ok(MaterialDesc::Dielectric {
@@ -154,10 +153,14 @@ impl SceneBuilder {
                 Ok(MaterialDesc::ThinDielectric { eta })
             }
             "diffusetransmission" => {
-                let reflectance = params.rgb("reflectance", Rgb::splat(0.25))?;
-                let transmittance = params.rgb("transmittance", Rgb::splat(0.25))?;
-                check_unit_interval(params, "reflectance", reflectance)?;
-                check_unit_interval(params, "transmittance", transmittance)?;
+                let default = || RgbTexture::from(Rgb::splat(0.25));
+                let reflectance = self.textures.rgb(params, "reflectance")?.unwrap_or_else(default);
+                let transmittance = self.textures.rgb(params, "transmittance")?.unwrap_or_else(default);
+                for (name, t) in [("reflectance", &reflectance), ("transmittance", &transmittance)] {
+                    if let Some(c) = t.constant() {
+                        check_unit_interval(params, name, c)?;
+                    }
+                }
                 let scale = params.float("scale", 1.0)?;
                 if scale < 0.0 {
                     let p = params.get("scale").map_or(&params.loc, |p| &p.loc);
@@ -198,26 +201,32 @@ enum SpectrumKind {
     MetalIndex,
 }
 
-/// A colour parameter given as `rgb` or (for metal indices) a named spectrum; `None` when
-/// absent. Textures, blackbodies and spectra given as wavelength-value pairs are reported as
-/// not supported yet.
-fn spectrum_param(params: &ParamSet, name: &str, kind: SpectrumKind) -> Result<Option<Rgb>, SceneError> {
-    let forms = [
-        ParamType::Rgb,
-        ParamType::Spectrum,
-        ParamType::Blackbody,
-        ParamType::Texture,
-    ];
-    let Some(p) = params.lookup(name, &forms)? else {
-        return Ok(None);
-    };
-    let unsupported = |what: &str| {
-        Err(SceneError::unsupported(
-            &p.loc,
-            format!("\"{}\" of {} ({what}) is not supported yet", p.decl(), params.owner),
-        ))
-    };
-    match p.ty {
+impl SceneBuilder {
+    /// A colour parameter given as `rgb`, as a `texture` or (for metal indices) a named
+    /// spectrum; `None` when absent. Blackbodies and spectra given as wavelength-value pairs
+    /// are reported as not supported yet.
+    fn spectrum_param(
+        &self,
+        params: &ParamSet,
+        name: &str,
+        kind: SpectrumKind,
+    ) -> Result<Option<RgbTexture>, SceneError> {
+        let forms = [
+            ParamType::Rgb,
+            ParamType::Spectrum,
+            ParamType::Blackbody,
+            ParamType::Texture,
+        ];
+        let Some(p) = params.lookup(name, &forms)? else {
+            return Ok(None);
+        };
+        let unsupported = |what: &str| {
+            Err(SceneError::unsupported(
+                &p.loc,
+                format!("\"{}\" of {} ({what}) is not supported yet", p.decl(), params.owner),
+            ))
+        };
+        match p.ty {
         ParamType::Rgb => {
             let v = p.floats();
             if v.len() != 3 {
@@ -233,11 +242,11 @@ fn spectrum_param(params: &ParamSet, name: &str, kind: SpectrumKind) -> Result<O
                     format!("\"{}\" of {} must not be negative", p.decl(), params.owner),
                 ));
             }
-            Ok(Some(rgb))
+            Ok(Some(rgb.into()))
         }
         ParamType::Spectrum if kind == SpectrumKind::MetalIndex => match p.strings() {
             [named] => match metal_rgb(named) {
-                Some(rgb) => Ok(Some(rgb)),
+                Some(rgb) => Ok(Some(rgb.into())),
                 None if KNOWN_UNCONVERTED.contains(&named.as_str()) => unsupported(&format!("named spectrum \"{named}\"")),
                 None => Err(SceneError::invalid(
                     &p.loc,
@@ -248,16 +257,45 @@ fn spectrum_param(params: &ParamSet, name: &str, kind: SpectrumKind) -> Result<O
                     ),
                 )),
             },
-            [] => params.color(name, Rgb::WHITE, SpectrumRole::Unbounded).map(Some),
+            [] => params
+                .color(name, Rgb::WHITE, SpectrumRole::Unbounded)
+                .map(|c| Some(c.into())),
             _ => Err(SceneError::syntax(
                 &p.loc,
                 format!("\"{}\" of {} needs exactly one spectrum name", p.decl(), params.owner),
             )),
         },
-        ParamType::Spectrum if p.strings().is_empty() => params.color(name, Rgb::WHITE, SpectrumRole::Albedo).map(Some),
+        ParamType::Spectrum if p.strings().is_empty() => params
+            .color(name, Rgb::WHITE, SpectrumRole::Albedo)
+            .map(|c| Some(c.into())),
         ParamType::Spectrum => unsupported("a named spectrum; give an rgb value or (wavelength, value) pairs"),
-        ParamType::Texture => unsupported("textures"),
+        ParamType::Texture => self.textures.rgb_reference(p, &params.owner).map(Some),
         _ => unsupported("a blackbody"),
+    }
+    }
+
+    /// `uroughness` and `vroughness` (float textures), each defaulting to `roughness`, which
+    /// defaults to 0. Constant roughnesses must not be negative.
+    fn roughness(&self, params: &ParamSet) -> Result<(FloatTexture, FloatTexture), SceneError> {
+        let r = self.textures.float(params, "roughness", 0.0)?;
+        let u = match params.get("uroughness") {
+            Some(_) => self.textures.float(params, "uroughness", 0.0)?,
+            None => r.clone(),
+        };
+        let v = match params.get("vroughness") {
+            Some(_) => self.textures.float(params, "vroughness", 0.0)?,
+            None => r.clone(),
+        };
+        for (name, value) in [("roughness", &r), ("uroughness", &u), ("vroughness", &v)] {
+            if value.constant().is_some_and(|c| c < 0.0) {
+                let p = params.get(name).map_or(&params.loc, |p| &p.loc);
+                return Err(SceneError::invalid(
+                    p,
+                    format!("\"{name}\" of {} must not be negative", params.owner),
+                ));
+            }
+        }
+        Ok((u, v))
     }
 }
 
@@ -298,7 +336,11 @@ fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
         _ => {
             return Err(SceneError::unsupported(
                 &p.loc,
-                format!("\"{}\" of {} (textures) is not supported yet", p.decl(), params.owner),
+                format!(
+                    "\"{}\" of {}: a dielectric's index of refraction cannot be a texture (as in pbrt-v4); give a float or a named glass",
+                    p.decl(),
+                    params.owner
+                ),
             ))
         }
     };
@@ -309,22 +351,6 @@ fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
         ));
     }
     Ok(if eta == 0.0 { 1.0 } else { eta })
-}
-
-/// `uroughness` and `vroughness`, each defaulting to `roughness`, which defaults to 0.
-fn roughness(params: &ParamSet) -> Result<(f32, f32), SceneError> {
-    let r = params.float("roughness", 0.0)?;
-    let (u, v) = (params.float("uroughness", r)?, params.float("vroughness", r)?);
-    for (name, value) in [("roughness", r), ("uroughness", u), ("vroughness", v)] {
-        if value < 0.0 {
-            let p = params.get(name).map_or(&params.loc, |p| &p.loc);
-            return Err(SceneError::invalid(
-                p,
-                format!("\"{name}\" of {} must not be negative", params.owner),
-            ));
-        }
-    }
-    Ok((u, v))
 }
 
 /// Error unless every channel of `value` (the parameter `name`) is in [0, 1].

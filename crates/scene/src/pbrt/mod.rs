@@ -10,10 +10,11 @@
 //! attribute scopes (`TransformBegin`/`End` as in pbrt-v4), `ReverseOrientation`,
 //! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, every
 //! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
-//! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
+//! `Material`/`MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix,
+//! checkerboard, imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource
 //! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
 //! planar `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
-//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, textures, lights,
+//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, texture classes, lights,
 //! shapes, media and motion blur are errors naming the feature.
 //!
 //! Relative file names resolve as in pbrt-v4: against the directory of the top-level scene
@@ -21,7 +22,7 @@
 //!
 //! Layout: `tokenizer` splits text into tokens, `params` types parameter lists, `parser`
 //! reads directives, `builder` (with `graphics_state`, `options`, `materials`, `lights`,
-//! `shapes`) gives them meaning, `transform` has pbrt's transform matrices.
+//! `shapes`, `textures`) gives them meaning, `transform` has pbrt's transform matrices.
 
 mod builder;
 mod graphics_state;
@@ -34,6 +35,7 @@ mod parser;
 mod shapes;
 mod spectra;
 mod spectrum_rgb;
+mod textures;
 mod tokenizer;
 mod transform;
 

@@ -264,7 +264,7 @@ impl Param {
         }
     }
 
-    fn expect_single(&self) -> Result<(), SceneError> {
+    pub(super) fn expect_single(&self) -> Result<(), SceneError> {
         let n = self.values.len() / self.ty.arity();
         if n == 1 {
             Ok(())
@@ -513,16 +513,6 @@ impl ParamSet {
         }))
     }
 
-    /// A single colour used as a reflectance: `rgb`, or a `spectrum` of (wavelength, value)
-    /// pairs, or a `blackbody`, converted as [`Self::color`] says for
-    /// [`SpectrumRole::Albedo`].
-    ///
-    /// # Errors
-    /// As [`Self::color`].
-    pub fn rgb(&self, name: &str, default: Rgb) -> Result<Rgb, SceneError> {
-        self.color(name, default, SpectrumRole::Albedo)
-    }
-
     /// A single colour: `rgb` as given; `spectrum` as (wavelength nm, value) pairs, or
     /// `blackbody` (a temperature in Kelvin), converted to linear sRGB once by `role` (see
     /// [`super::spectrum_rgb`]). Named spectra and `texture` are left to the callers that
@@ -540,48 +530,7 @@ impl ParamSet {
         let Some(p) = self.lookup(name, &forms)? else {
             return Ok(default);
         };
-        let bad = |what: String| SceneError::invalid(&p.loc, format!("\"{}\" of {}: {what}", p.decl(), self.owner));
-        match p.ty {
-            ParamType::Rgb => {
-                p.expect_single()?;
-                let v = p.floats();
-                Ok(Rgb::new(v[0], v[1], v[2]))
-            }
-            ParamType::Blackbody => {
-                p.expect_single()?;
-                let c = blackbody_rgb(p.floats()[0]).map_err(bad)?;
-                // A blackbody is an emission spectrum; elsewhere pbrt-v4 uses it as given,
-                // normalised to a peak of 1, which has no RGB meaning without a light.
-                if role == SpectrumRole::Illuminant {
-                    Ok(c)
-                } else {
-                    Err(bad("a blackbody is only accepted as an emission (L or I)".into()))
-                }
-            }
-            ParamType::Spectrum if matches!(p.values, ParamValues::Floats(_)) => {
-                let v = p.floats();
-                if v.len() % 2 != 0 {
-                    return Err(bad(format!(
-                        "expected (wavelength, value) pairs, got {} numbers",
-                        v.len()
-                    )));
-                }
-                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
-                let s = sampled_spectrum(&pairs).map_err(bad)?;
-                Ok(spectrum_to_rgb(s, role))
-            }
-            _ => Err(SceneError::unsupported(
-                &p.loc,
-                format!(
-                    "\"{}\" of {} is not supported yet; only \"rgb {}\", \"spectrum {}\" as (wavelength, value) pairs and \"blackbody {}\" (emission) are",
-                    p.decl(),
-                    self.owner,
-                    p.name,
-                    p.name,
-                    p.name
-                ),
-            )),
-        }
+        color_of(p, &self.owner, role)
     }
 
     /// One warning per parameter that no getter read (parameters from `Attribute` excepted):
@@ -601,6 +550,51 @@ impl ParamSet {
             })
             .collect()
     }
+}
+
+/// The colour a single `rgb`, `spectrum` (wavelength, value pairs) or `blackbody` parameter
+/// gives, converted by `role` (see [`ParamSet::color`]).
+///
+/// # Errors
+/// Another form or type, not exactly one value, or a malformed spectrum.
+pub fn color_of(p: &Param, owner: &str, role: SpectrumRole) -> Result<Rgb, SceneError> {
+    let bad = |what: String| SceneError::invalid(&p.loc, format!("\"{}\" of {}: {what}", p.decl(), owner));
+    match p.ty {
+            ParamType::Rgb => {
+                p.expect_single()?;
+                let v = p.floats();
+                Ok(Rgb::new(v[0], v[1], v[2]))
+            }
+            ParamType::Blackbody => {
+                p.expect_single()?;
+                let c = blackbody_rgb(p.floats()[0]).map_err(bad)?;
+                // A blackbody is an emission spectrum; elsewhere pbrt-v4 uses it as given,
+                // normalised to a peak of 1, which has no RGB meaning without a light.
+                if role == SpectrumRole::Illuminant {
+                    Ok(c)
+                } else {
+                    Err(bad("a blackbody is only accepted as an emission (L or I)".into()))
+                }
+            }
+            ParamType::Spectrum if matches!(p.values, ParamValues::Floats(_)) => {
+                let v = p.floats();
+                // Parsing already checked that the numbers come in pairs.
+                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+                let s = sampled_spectrum(&pairs).map_err(bad)?;
+                Ok(spectrum_to_rgb(s, role))
+            }
+            _ => Err(SceneError::unsupported(
+                &p.loc,
+                format!(
+                    "\"{}\" of {} is not supported yet; only \"rgb {}\", \"spectrum {}\" as (wavelength, value) pairs and \"blackbody {}\" (emission) are",
+                    p.decl(),
+                    owner,
+                    p.name,
+                    p.name,
+                    p.name
+                ),
+            )),
+        }
 }
 
 #[cfg(test)]
@@ -648,7 +642,10 @@ mod tests {
         assert!(!s.bool("off", true).unwrap());
         assert_eq!(s.string("s").unwrap().unwrap().0, "x");
         assert_eq!(s.point3("p", Vec3::ZERO).unwrap(), Vec3::new(1.0, 2.0, 3.0));
-        assert_eq!(s.rgb("c", Rgb::BLACK).unwrap(), Rgb::new(0.1, 0.2, 0.3));
+        assert_eq!(
+            s.color("c", Rgb::BLACK, SpectrumRole::Albedo).unwrap(),
+            Rgb::new(0.1, 0.2, 0.3)
+        );
         assert!(s.unused_warnings().is_empty());
     }
 
@@ -711,7 +708,7 @@ mod tests {
     #[test]
     fn sampled_spectra_and_blackbodies_become_rgb() {
         let s = set(&["\"spectrum reflectance\" [300 .3 800 .3]"]);
-        let c = s.rgb("reflectance", Rgb::splat(0.5)).unwrap();
+        let c = s.color("reflectance", Rgb::splat(0.5), SpectrumRole::Albedo).unwrap();
         assert!((0..3).all(|ch| (c[ch] - 0.3).abs() < 1e-5), "{c:?}");
         let s = set(&["\"blackbody L\" [ 2700 ]"]);
         let c = s.color("L", Rgb::WHITE, SpectrumRole::Illuminant).unwrap();
@@ -727,17 +724,20 @@ mod tests {
             .to_string();
         assert!(e.starts_with("p.pbrt:1:1:") && e.contains("must be positive"), "{e}");
         let s = set(&["\"spectrum reflectance\" [500 .3 400 .3]"]);
-        let e = s.rgb("reflectance", Rgb::WHITE).unwrap_err().to_string();
+        let e = s
+            .color("reflectance", Rgb::WHITE, SpectrumRole::Albedo)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("wavelengths must increase"), "{e}");
     }
 
     #[test]
     fn other_colour_forms_are_unsupported() {
         let s = set(&["\"texture reflectance\" \"checks\""]);
-        assert!(s.rgb("reflectance", Rgb::splat(0.5)).is_err());
+        assert!(s.color("reflectance", Rgb::splat(0.5), SpectrumRole::Albedo).is_err());
         let s = set(&["\"spectrum eta\" \"metal-Ag-eta\""]);
         assert_eq!(
-            s.rgb("eta", Rgb::splat(0.5)).unwrap_err().to_string(),
+            s.color("eta", Rgb::splat(0.5), SpectrumRole::Albedo).unwrap_err().to_string(),
             "p.pbrt:1:1: \"spectrum eta\" of Shape \"sphere\" is not supported yet; only \"rgb eta\", \"spectrum eta\" as (wavelength, value) pairs and \"blackbody eta\" (emission) are"
         );
     }

@@ -343,10 +343,12 @@ impl Parser {
             }
             "Texture" => {
                 let (tex, _) = self.expect_string("a quoted texture name")?;
-                self.expect_string("a quoted texture type (\"float\" or \"spectrum\")")?;
-                let (class, _) = self.expect_string("a quoted texture class")?;
-                self.param_list()?;
-                self.builder.texture(&tex, &class, &loc)?;
+                let (ty, ty_loc) = self.expect_string("a quoted texture type (\"float\" or \"spectrum\")")?;
+                let (class, class_loc) = self.expect_string("a quoted texture class")?;
+                let params = self.param_list()?;
+                let mut params = ParamSet::new(format!("Texture \"{tex}\" (\"{class}\")"), loc.clone(), params);
+                self.builder
+                    .texture(&tex, (&ty, &ty_loc), &class, &mut params, &class_loc)?;
             }
             "Include" | "Import" => self.include(name, &loc)?,
             "ObjectBegin" => {
