@@ -80,8 +80,12 @@ impl PathIntegrator {
                 }
             }
 
-            // Get the BSDF; stop at the depth limit.
-            let bsdf = scene.materials[prim.material as usize].bsdf(&si);
+            // Get the BSDF; pass through surfaces without one (`interface`) without counting
+            // a bounce; stop at the depth limit.
+            let Some(bsdf) = scene.bsdf(prim.material, &si) else {
+                ray = si.spawn_ray(ray.d);
+                continue;
+            };
             if depth == self.max_depth {
                 break;
             }
@@ -109,7 +113,13 @@ impl PathIntegrator {
             if bs.flags.contains(BxdfFlags::TRANSMISSION) {
                 eta_scale *= bs.eta * bs.eta;
             }
-            prev_bsdf_pdf = bs.pdf;
+            // A stochastic BSDF's sampled pdf is only proportional to the true one: MIS needs
+            // the (estimated) density itself, as pbrt-v4's `pdfIsProportional`.
+            prev_bsdf_pdf = if bs.pdf_is_proportional {
+                bsdf.pdf(si.wo, bs.wi)
+            } else {
+                bs.pdf
+            };
             prev = si.intr;
             ray = si.spawn_ray(bs.wi);
 

@@ -1,5 +1,12 @@
 //! Layer 4: the render-ready scene. Built from a [`SceneDescription`]: primitives (shape,
 //! material, optional light) in a flat array owned by a BVH, materials and lights by index.
+//!
+//! Surfaces of the `interface` material have no BSDF: [`Scene::bsdf`] returns `None` and
+//! the integrators continue rays through them without counting a bounce. Shadow rays
+//! ([`Scene::unoccluded_ray`]) pass through them too, so such a surface changes nothing
+//! (pbrt-v4's `PathIntegrator` instead lets them block shadow rays and counts emission
+//! found through them in full; its `VolPathIntegrator`, for which interfaces exist, lets
+//! its shadow rays through as we do).
 
 mod build;
 mod description;
@@ -10,6 +17,7 @@ pub use description::*;
 pub use instance::{Instance, ObjectGeometry};
 
 use crate::accel::Bvh;
+use crate::bsdf::Bsdf;
 use crate::camera::Camera;
 use crate::film::Filter;
 use crate::light::{Light, PowerLightSampler};
@@ -63,6 +71,8 @@ pub struct Scene {
     pub integrator: IntegratorDesc,
     /// Placed objects; the BVH refers to them after the primitives.
     pub instances: Vec<Instance>,
+    /// True when some material is an `interface`, which shadow rays must skip.
+    has_interfaces: bool,
     bvh: Bvh,
 }
 
@@ -97,17 +107,31 @@ impl Scene {
         }
     }
 
-    /// True when nothing blocks `ray` within `(0, t_max)`.
+    /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces do not.
     #[must_use]
     pub fn unoccluded_ray(&self, ray: &Ray, t_max: f32) -> bool {
         let n = self.primitives.len() as u32;
+        let blocks =
+            |p: &Primitive| !self.has_interfaces || !matches!(self.materials[p.material as usize], Material::Interface);
         !self.bvh.any_hit(ray, t_max, |i, r, t| {
             if i < n {
-                self.primitives[i as usize].shape.intersect(r, t).is_some()
+                let p = &self.primitives[i as usize];
+                blocks(p) && p.shape.intersect(r, t).is_some()
             } else {
-                self.instances[(i - n) as usize].any_hit(r, t)
+                self.instances[(i - n) as usize].any_hit(r, t, blocks)
             }
         })
+    }
+
+    /// The BSDF of material `material` at `si`, following the choices of `mix` materials
+    /// (validation rules out cycles); `None` for an `interface`, which rays pass through.
+    #[must_use]
+    pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
+        let mut m = &self.materials[material as usize];
+        while let Some(next) = m.mix_choice(si) {
+            m = &self.materials[next as usize];
+        }
+        m.bsdf(si)
     }
 
     /// True when the segment between two points is free (both ends offset off their
