@@ -97,8 +97,14 @@ impl PathIntegrator {
                 l += beta * self.direct.estimate(scene, &si, &bsdf, sampler, stats);
             }
             // A continuation that ends at the depth limit only matters for the emission it
-            // may find.
-            if depth == self.max_depth && non_specular && !self.direct.uses_continuation() {
+            // may find: none counts after a non-specular event when the direct strategy
+            // ignores continuations, so skip it unless the BSDF also has a specular part
+            // (a smooth coat over a diffuse base), whose emission always counts.
+            if depth == self.max_depth
+                && non_specular
+                && !bsdf.flags().is_specular()
+                && !self.direct.uses_continuation()
+            {
                 break;
             }
 
