@@ -12,9 +12,20 @@
 //! - `thindielectric`: `eta` as for `dielectric`.
 //! - `diffusetransmission`: `rgb reflectance`, `rgb transmittance` (default 0.25 each),
 //!   `float scale` (default 1).
+//! - `coateddiffuse`: `rgb reflectance` (default 0.5), roughness as for `conductor`,
+//!   `eta` as for `dielectric`, and the slab: `float thickness` (default 0.01),
+//!   `rgb albedo` (default 0), `float g` (default 0, in [-1, 1]), `integer maxdepth`
+//!   (default 10), `integer nsamples` (default 1).
+//! - `coatedconductor`: `interface.roughness`/`interface.uroughness`/`interface.vroughness`,
+//!   `interface.eta` (default 1.5), `conductor.eta`/`conductor.k` (default copper) or
+//!   `rgb reflectance`, `conductor.roughness`/`conductor.uroughness`/`conductor.vroughness`,
+//!   `remaproughness`, and the slab as for `coateddiffuse`.
+//! - `mix`: `string materials` (two named materials, resolved with the other names once
+//!   the file is read, so they may be defined later; a mix that contains itself is an
+//!   error), `float amount` (default 0.5).
+//! - `interface` (also `""` and `"none"`, as pbrt-v4): no surface.
 //!
-//! `coateddiffuse`, `coatedconductor`, `mix`, `interface`, `hair`, `measured` and
-//! `subsurface` are reported as not supported yet.
+//! `hair`, `measured` and `subsurface` are reported as not supported yet.
 
 use std::collections::HashMap;
 
