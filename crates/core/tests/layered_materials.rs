@@ -176,3 +176,107 @@ fn interface_surfaces_change_nothing() {
         assert_close(&d, expected, &format!("interface, {}", strategy.name()));
     }
 }
+
+#[test]
+fn invalid_layered_and_mix_parameters_are_refused() {
+    let coated = MaterialDesc::CoatedDiffuse {
+        reflectance: Rgb::splat(0.5),
+        u_roughness: 0.0,
+        v_roughness: 0.0,
+        remap_roughness: true,
+        thickness: 0.01,
+        eta: 1.5,
+        albedo: Rgb::BLACK,
+        g: 0.0,
+        max_depth: 10,
+        n_samples: 1,
+    };
+    let conductor = MaterialDesc::CoatedConductor {
+        interface_u_roughness: 0.0,
+        interface_v_roughness: 0.0,
+        interface_eta: 1.5,
+        conductor_eta: Rgb::splat(0.2),
+        conductor_k: Rgb::splat(3.0),
+        reflectance: None,
+        conductor_u_roughness: 0.1,
+        conductor_v_roughness: 0.1,
+        remap_roughness: true,
+        thickness: 0.01,
+        albedo: Rgb::BLACK,
+        g: 0.0,
+        max_depth: 10,
+        n_samples: 1,
+    };
+    let build = |m: MaterialDesc| {
+        let mut d = under_sky(1.0);
+        set_receiver_material(&mut d, m);
+        Scene::build(&d).map(|_| ()).map_err(|e| e.to_string())
+    };
+    assert_eq!(build(coated.clone()), Ok(()));
+    assert_eq!(build(conductor.clone()), Ok(()));
+    let mut bad = Vec::new();
+    for (field, v) in [
+        ("thickness", f32::NAN),
+        ("thickness", -1.0),
+        ("g", f32::NAN),
+        ("eta", 0.0),
+        ("roughness", -0.1),
+    ] {
+        let mut m = coated.clone();
+        if let MaterialDesc::CoatedDiffuse {
+            thickness,
+            g,
+            eta,
+            u_roughness,
+            ..
+        } = &mut m
+        {
+            match field {
+                "thickness" => *thickness = v,
+                "g" => *g = v,
+                "eta" => *eta = v,
+                _ => *u_roughness = v,
+            }
+        }
+        bad.push((format!("coated diffuse {field} {v}"), m));
+    }
+    for (field, v) in [
+        ("albedo", -0.5),
+        ("conductor k", f32::NAN),
+        ("interface eta", f32::INFINITY),
+    ] {
+        let mut m = conductor.clone();
+        if let MaterialDesc::CoatedConductor {
+            albedo,
+            conductor_k,
+            interface_eta,
+            ..
+        } = &mut m
+        {
+            match field {
+                "albedo" => *albedo = Rgb::splat(v),
+                "conductor k" => *conductor_k = Rgb::splat(v),
+                _ => *interface_eta = v,
+            }
+        }
+        bad.push((format!("coated conductor {field} {v}"), m));
+    }
+    bad.push((
+        "mix amount NaN".into(),
+        MaterialDesc::Mix {
+            materials: [0, 0],
+            amount: f32::NAN,
+        },
+    ));
+    bad.push((
+        "mix of a missing material".into(),
+        MaterialDesc::Mix {
+            materials: [0, 99],
+            amount: 0.5,
+        },
+    ));
+    for (label, m) in bad {
+        let e = build(m).expect_err(&label);
+        assert!(e.contains("material"), "{label}: {e}");
+    }
+}

@@ -127,11 +127,23 @@ impl Scene {
     /// (validation rules out cycles); `None` for an `interface`, which rays pass through.
     #[must_use]
     pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
+        self.resolve_material(material, si).bsdf(si)
+    }
+
+    /// True when material `material` at `si` is an `interface` (no surface), without
+    /// building a BSDF.
+    #[must_use]
+    pub fn passes_through(&self, material: u32, si: &SurfaceInteraction) -> bool {
+        self.has_interfaces && matches!(self.resolve_material(material, si), Material::Interface)
+    }
+
+    /// The material used at `si`: `material` itself, or what its mixes choose there.
+    fn resolve_material(&self, material: u32, si: &SurfaceInteraction) -> &Material {
         let mut m = &self.materials[material as usize];
         while let Some(next) = m.mix_choice(si) {
             m = &self.materials[next as usize];
         }
-        m.bsdf(si)
+        m
     }
 
     /// True when the segment between two points is free (both ends offset off their

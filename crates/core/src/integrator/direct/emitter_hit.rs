@@ -25,7 +25,7 @@ pub fn emitted_toward(scene: &Scene, si: &SurfaceInteraction, wi: Vec3, stats: &
         if let Some(Light::DiffuseArea(area)) = hit.primitive.light.map(|i| &scene.lights[i as usize]) {
             sum += area.l(hit.si.n(), hit.si.wo);
         }
-        if scene.bsdf(hit.primitive.material, &hit.si).is_some() {
+        if !scene.passes_through(hit.primitive.material, &hit.si) {
             return sum;
         }
         ray = hit.si.spawn_ray(wi);
