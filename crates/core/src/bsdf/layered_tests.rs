@@ -208,6 +208,10 @@ fn sampling_and_evaluation_estimate_the_same_albedo() {
             "smooth coat, scattering slab",
             coated_diffuse(0.5, 0.0, 0.5, 0.8, -0.3, 50),
         ),
+        (
+            "smooth coat, thick white slab",
+            coated_diffuse(0.2, 0.0, 2.0, 0.95, 0.2, 100),
+        ),
         ("rough coat, rough conductor", coated_conductor(0.8, 0.2, 0.3, 0.1, 0.0)),
         (
             "smooth coat, rough conductor",
@@ -248,4 +252,46 @@ fn estimates_are_deterministic_finite_and_the_pdf_positive() {
     // A smooth coat over a smooth conductor with a clear slab is purely specular.
     let mirror = coated_conductor(0.9, 0.0, 0.0, 0.01, 0.0);
     assert!(mirror.flags().is_specular() && !mirror.flags().is_non_specular());
+}
+
+#[test]
+fn reciprocal_in_expectation() {
+    // f(wo, wi) = f(wi, wo) for reflection (the 1/eta^2 of entering cancels the eta^2 of
+    // leaving). f is a random estimate, deterministic in its arguments: average many walks,
+    // and estimate the noise from independent estimates at directions 2e-6 apart (within 1e-3).
+    let cases = [
+        (
+            "rough coat, scattering slab",
+            coated_diffuse(0.5, 0.3, 0.3, 0.7, 0.3, 50),
+        ),
+        ("smooth coat, diffuse", coated_diffuse(0.7, 0.0, 0.05, 0.0, 0.0, 50)),
+        ("rough coat, rough conductor", coated_conductor(0.8, 0.2, 0.3, 0.1, 0.5)),
+    ];
+    let pairs = [
+        (dir(20.0), Vec3::new(-0.5, 0.3, 0.6).normalize()),
+        (dir(70.0), Vec3::new(0.1, -0.2, 0.9).normalize()),
+    ];
+    for (label, b) in &cases {
+        for (wo, wi) in pairs {
+            let est = |a: Vec3, c: Vec3| {
+                let k = 1024;
+                let v: Vec<f64> = (0..k)
+                    .map(|j| {
+                        let d = Vec3::new(2e-6 * (j - k / 2) as f32, 0.0, 0.0);
+                        f64::from(b.f((a + d).normalize(), c).g)
+                    })
+                    .collect();
+                let m = v.iter().sum::<f64>() / f64::from(k);
+                let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / f64::from(k - 1);
+                (m, (var / f64::from(k)).sqrt())
+            };
+            let (a, ea) = est(wo, wi);
+            let (r, er) = est(wi, wo);
+            eprintln!("{label}: {a} +- {ea} vs {r} +- {er}");
+            assert!(
+                (a - r).abs() < 4.0 * ea.hypot(er) + 1e-3,
+                "{label}, {wo} {wi}: f {a} +- {ea}, reversed {r} +- {er}"
+            );
+        }
+    }
 }
