@@ -11,7 +11,13 @@
 //!   sampled transmission of `wo`; at each vertex it adds next-event estimates towards the
 //!   exit along a pre-sampled transmission of `wi` (the adjoint walk), weighted against the
 //!   walk's own continuation by the power heuristic (the estimator of pbrt-v4 section
-//!   14.3.2). It is an unbiased estimate of the BSDF.
+//!   14.3.2). It is an unbiased estimate of the BSDF. One deliberate difference from
+//!   pbrt-v4: when the walk's own direction `w` is weighted against the pre-sampled exit,
+//!   the exit strategy's density is that of sampling `-w` from `wi` (how the exit is
+//!   sampled), `pdf(wi, -w)`; pbrt-v4 uses `pdf(-w, wi)`, which differs for rough
+//!   refraction, so the two weights of a path do not sum to one. With pbrt's weights `f`
+//!   disagreed with `sample_f` by 7% for a rough coat (alpha 0.3) in our tests; with these
+//!   they agree within noise.
 //! - [`LayeredBxdf::sample_f`] follows one walk from `wo` until it leaves through the coat;
 //!   its `f / pdf` is an unbiased estimate of the throughput, but `f` and `pdf` themselves
 //!   are only proportional to the true values ([`BsdfSample::pdf_is_proportional`]), so MIS

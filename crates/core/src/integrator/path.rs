@@ -3,6 +3,11 @@
 //! infinite lights when the ray leaves the scene), a direct lighting estimate, a
 //! BSDF-sampled continuation, and Russian roulette. Each block below is one step of the
 //! rendering equation `L_o = L_e + integral f L_i cos`.
+//!
+//! Surfaces without a BSDF (`interface`) are passed through without counting a bounce.
+//! For stochastic BSDFs (layered) the sampled pdf is only proportional to the density, so
+//! emission found by the continuation is MIS-weighted with `Bsdf::pdf` instead (pbrt-v4's
+//! `pdfIsProportional`).
 
 use super::{roulette, DirectEstimator, TraceStats};
 use crate::bsdf::BxdfFlags;
