@@ -269,12 +269,12 @@ fn block_structure() {
 #[test]
 fn unsupported_features_are_named() {
     assert_eq!(
-        error("WorldBegin\nMaterial \"coatedconductor\""),
-        "scene.pbrt:2:1: material type \"coatedconductor\" is not supported yet"
+        error("WorldBegin\nMaterial \"hair\""),
+        "scene.pbrt:2:1: material type \"hair\" is not supported yet"
     );
     assert_eq!(
-        error("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"mix\""),
-        "scene.pbrt:2:23: material type \"mix\" is not supported yet (in MakeNamedMaterial \"m\")"
+        error("WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"subsurface\""),
+        "scene.pbrt:2:23: material type \"subsurface\" is not supported yet (in MakeNamedMaterial \"m\")"
     );
     assert_eq!(
         error("WorldBegin\nMaterial \"shiny\""),
@@ -309,10 +309,7 @@ fn unsupported_features_are_named() {
         "scene.pbrt:2:20: \"blackbody reflectance\" of Material \"diffuse\": a blackbody is only accepted as an emission (L or I)"
     );
     assert_eq!(kind("Sampler \"bogus\""), SceneErrorKind::Syntax);
-    assert_eq!(
-        kind("WorldBegin\nMaterial \"coateddiffuse\""),
-        SceneErrorKind::Unsupported
-    );
+    assert_eq!(kind("WorldBegin\nMaterial \"measured\""), SceneErrorKind::Unsupported);
 }
 
 #[test]

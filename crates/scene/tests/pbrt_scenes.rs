@@ -124,20 +124,33 @@ fn shared_cornell_box_matches_the_copy() {
 }
 
 #[test]
-fn coffee_fails_naming_the_unsupported_material() {
-    let Some(dir) = shared_scenes("coffee_fails_naming_the_unsupported_material") else {
+fn coffee_loads_with_its_coated_plastics() {
+    let Some(dir) = shared_scenes("coffee_loads_with_its_coated_plastics") else {
         return;
     };
-    let path = dir.join("coffee/scene-v4.pbrt");
-    let err = load_file(&path).unwrap_err();
-    assert_eq!(err.kind, SceneErrorKind::Unsupported);
-    assert_eq!(
-        err.to_string(),
-        format!(
-            "{}:20:5: material type \"coateddiffuse\" is not supported yet (in MakeNamedMaterial \"Plastic_Orange\")",
-            path.display()
-        )
-    );
+    let loaded = load_file(&dir.join("coffee/scene-v4.pbrt")).unwrap();
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let m = &loaded.description.materials;
+    let orange = MaterialDesc::CoatedDiffuse {
+        reflectance: Rgb::new(1.0, 0.378676, 0.013473),
+        u_roughness: 0.001,
+        v_roughness: 0.001,
+        remap_roughness: false,
+        thickness: 0.01,
+        eta: 1.5,
+        albedo: Rgb::BLACK,
+        g: 0.0,
+        max_depth: 10,
+        n_samples: 1,
+    };
+    assert!(m.contains(&orange), "{m:?}");
+    let coated = m
+        .iter()
+        .filter(|d| matches!(d, MaterialDesc::CoatedDiffuse { .. }))
+        .count();
+    assert_eq!(coated, 3, "orange and black plastic, floor: {m:?}");
+    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Conductor { .. })));
+    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Dielectric { .. })));
 }
 
 #[test]

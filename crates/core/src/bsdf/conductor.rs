@@ -61,6 +61,7 @@ impl ConductorBxdf {
                 pdf: 1.0,
                 flags: BxdfFlags::SPECULAR | BxdfFlags::REFLECTION,
                 eta: 1.0,
+                pdf_is_proportional: false,
             });
         }
         if wo.z == 0.0 {
@@ -84,6 +85,7 @@ impl ConductorBxdf {
             pdf,
             flags: BxdfFlags::GLOSSY | BxdfFlags::REFLECTION,
             eta: 1.0,
+            pdf_is_proportional: false,
         })
     }
 

@@ -15,7 +15,7 @@
 
 use super::fresnel::{fr_dielectric, reflect, refract};
 use super::microfacet::TrowbridgeReitz;
-use super::{same_hemisphere, BsdfSample, BxdfFlags};
+use super::{same_hemisphere, BsdfSample, BxdfFlags, ReflTrans, TransportMode};
 use crate::color::Rgb;
 use crate::math::{sqr, Vec2, Vec3};
 
@@ -76,9 +76,16 @@ impl DielectricBxdf {
         Some((wm, etap, reflect))
     }
 
-    /// The rough BSDF; zero when specular.
+    /// The rough BSDF for radiance; zero when specular.
     #[must_use]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        self.f_mode(wo, wi, TransportMode::Radiance)
+    }
+
+    /// The rough BSDF for `mode` (importance skips the `1 / eta'^2` scaling of
+    /// transmission); zero when specular.
+    #[must_use]
+    pub fn f_mode(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
         if self.is_specular() {
             return Rgb::BLACK;
         }
@@ -91,25 +98,39 @@ impl DielectricBxdf {
             d.d(wm) * d.g(wo, wi) * fr / (4.0 * wi.z * wo.z).abs()
         } else {
             let denom = sqr(wi.dot(wm) + wo.dot(wm) / etap) * wi.z * wo.z;
-            d.d(wm) * (1.0 - fr) * d.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs() / sqr(etap)
+            d.d(wm) * (1.0 - fr) * d.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs() * radiance_scale(etap, mode)
         };
         Rgb::splat(v)
     }
 
-    /// Sample reflection or transmission in proportion to Fresnel.
+    /// Sample reflection or transmission in proportion to Fresnel (radiance).
     #[must_use]
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+        self.sample_f_mode(wo, uc, u, TransportMode::Radiance, ReflTrans::All)
+    }
+
+    /// Sample among the kinds `allowed` in proportion to their Fresnel weights, for `mode`.
+    #[must_use]
+    pub fn sample_f_mode(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+        allowed: ReflTrans,
+    ) -> Option<BsdfSample> {
         if self.is_specular() {
             let r = fr_dielectric(wo.z, self.eta);
-            let t = 1.0 - r;
-            if uc < r / (r + t) {
+            let (pr, pt) = allowed.probabilities(r, 1.0 - r)?;
+            if uc < pr {
                 let wi = Vec3::new(-wo.x, -wo.y, wo.z);
                 return Some(BsdfSample {
                     f: Rgb::splat(r / wi.z.abs()),
                     wi,
-                    pdf: r / (r + t),
+                    pdf: pr,
                     flags: BxdfFlags::SPECULAR | BxdfFlags::REFLECTION,
                     eta: 1.0,
+                    pdf_is_proportional: false,
                 });
             }
             let (wi, etap) = refract(wo, Vec3::Z, self.eta)?;
@@ -117,11 +138,12 @@ impl DielectricBxdf {
                 return None;
             }
             return Some(BsdfSample {
-                f: Rgb::splat(t / wi.z.abs() / sqr(etap)),
+                f: Rgb::splat((1.0 - r) / wi.z.abs() * radiance_scale(etap, mode)),
                 wi,
-                pdf: t / (r + t),
+                pdf: pt,
                 flags: BxdfFlags::SPECULAR | BxdfFlags::TRANSMISSION,
                 eta: etap,
+                pdf_is_proportional: false,
             });
         }
         if wo.z == 0.0 {
@@ -131,12 +153,13 @@ impl DielectricBxdf {
         let wm = d.sample_wm(wo, u);
         let r = fr_dielectric(wo.dot(wm), self.eta);
         let t = 1.0 - r;
-        if uc < r / (r + t) {
+        let (pr, pt) = allowed.probabilities(r, t)?;
+        if uc < pr {
             let wi = reflect(wo, wm);
             if !same_hemisphere(wo, wi) {
                 return None;
             }
-            let pdf = d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * (r / (r + t));
+            let pdf = d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * pr;
             if pdf.is_nan() || pdf <= 0.0 {
                 // A normal at the horizon, where D vanishes: no sample.
                 return None;
@@ -148,6 +171,7 @@ impl DielectricBxdf {
                 pdf,
                 flags: BxdfFlags::GLOSSY | BxdfFlags::REFLECTION,
                 eta: 1.0,
+                pdf_is_proportional: false,
             });
         }
         let (wi, etap) = refract(wo, wm, self.eta)?;
@@ -156,23 +180,34 @@ impl DielectricBxdf {
         }
         let denom = sqr(wi.dot(wm) + wo.dot(wm) / etap);
         let dwm_dwi = wi.dot(wm).abs() / denom;
-        let pdf = d.pdf(wo, wm) * dwm_dwi * (t / (r + t));
+        let pdf = d.pdf(wo, wm) * dwm_dwi * pt;
         if pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
-        let f = t * d.d(wm) * d.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / (wi.z * wo.z * denom)).abs() / sqr(etap);
+        let f = t
+            * d.d(wm)
+            * d.g(wo, wi)
+            * (wi.dot(wm) * wo.dot(wm) / (wi.z * wo.z * denom)).abs()
+            * radiance_scale(etap, mode);
         Some(BsdfSample {
             f: Rgb::splat(f),
             wi,
             pdf,
             flags: BxdfFlags::GLOSSY | BxdfFlags::TRANSMISSION,
             eta: etap,
+            pdf_is_proportional: false,
         })
     }
 
     /// Density of [`Self::sample_f`]; zero when specular.
     #[must_use]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.pdf_mode(wo, wi, ReflTrans::All)
+    }
+
+    /// Density of [`Self::sample_f_mode`] restricted to `allowed`; zero when specular.
+    #[must_use]
+    pub fn pdf_mode(&self, wo: Vec3, wi: Vec3, allowed: ReflTrans) -> f32 {
         if self.is_specular() {
             return 0.0;
         }
@@ -180,13 +215,23 @@ impl DielectricBxdf {
             return 0.0;
         };
         let r = fr_dielectric(wo.dot(wm), self.eta);
-        let t = 1.0 - r;
+        let Some((pr, pt)) = allowed.probabilities(r, 1.0 - r) else {
+            return 0.0;
+        };
         let d = &self.distrib;
         if reflect {
-            d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * (r / (r + t))
+            d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * pr
         } else {
             let denom = sqr(wi.dot(wm) + wo.dot(wm) / etap);
-            d.pdf(wo, wm) * (wi.dot(wm).abs() / denom) * (t / (r + t))
+            d.pdf(wo, wm) * (wi.dot(wm).abs() / denom) * pt
         }
+    }
+}
+
+/// The factor transmitted radiance gets, `1 / eta'^2`; 1 for importance.
+fn radiance_scale(etap: f32, mode: TransportMode) -> f32 {
+    match mode {
+        TransportMode::Radiance => 1.0 / sqr(etap),
+        TransportMode::Importance => 1.0,
     }
 }

@@ -52,6 +52,7 @@ impl DiffuseBxdf {
             pdf,
             flags: BxdfFlags::DIFFUSE_REFLECTION,
             eta: 1.0,
+            pdf_is_proportional: false,
         })
     }
 

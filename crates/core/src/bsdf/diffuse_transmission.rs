@@ -79,6 +79,7 @@ impl DiffuseTransmissionBxdf {
             pdf: p * cosine_hemisphere_pdf(wi.z.abs()),
             flags,
             eta: 1.0,
+            pdf_is_proportional: false,
         })
     }
 

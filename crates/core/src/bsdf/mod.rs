@@ -10,16 +10,22 @@ mod diffuse;
 mod diffuse_transmission;
 mod flags;
 pub mod fresnel;
+mod henyey_greenstein;
+mod layered;
 pub mod microfacet;
 mod thin_dielectric;
+mod transport;
 
 pub use conductor::ConductorBxdf;
 pub use dielectric::DielectricBxdf;
 pub use diffuse::DiffuseBxdf;
 pub use diffuse_transmission::DiffuseTransmissionBxdf;
 pub use flags::BxdfFlags;
+pub use henyey_greenstein::{HenyeyGreenstein, PhaseSample};
+pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf, OpaqueBase};
 pub use microfacet::{roughness_to_alpha, TrowbridgeReitz};
 pub use thin_dielectric::ThinDielectricBxdf;
+pub use transport::{ReflTrans, TransportMode};
 
 use crate::color::Rgb;
 use crate::math::{Frame, Vec2, Vec3};
@@ -39,6 +45,10 @@ pub struct BsdfSample {
     /// `wi` over that on the side of `wo`); 1 otherwise. Radiance crossing the interface is
     /// scaled by `1 / eta^2` in `f`; the integrator undoes that for Russian roulette.
     pub eta: f32,
+    /// True when `f` and `pdf` are only proportional to the true values (stochastic
+    /// lobes such as [`LayeredBxdf`]): `f / pdf` is still the right throughput, but MIS
+    /// weights must use [`Bsdf::pdf`] instead of `pdf` (as pbrt-v4's `pdfIsProportional`).
+    pub pdf_is_proportional: bool,
 }
 
 /// The closed set of lobes.
@@ -54,6 +64,10 @@ pub enum Bxdf {
     ThinDielectric(ThinDielectricBxdf),
     /// Lambertian reflection and transmission.
     DiffuseTransmission(DiffuseTransmissionBxdf),
+    /// A dielectric coat over a Lambertian base (stochastic).
+    CoatedDiffuse(CoatedDiffuseBxdf),
+    /// A dielectric coat over a conductor (stochastic).
+    CoatedConductor(CoatedConductorBxdf),
 }
 
 macro_rules! dispatch {
@@ -64,6 +78,8 @@ macro_rules! dispatch {
             Bxdf::Dielectric($b) => $e,
             Bxdf::ThinDielectric($b) => $e,
             Bxdf::DiffuseTransmission($b) => $e,
+            Bxdf::CoatedDiffuse($b) => $e,
+            Bxdf::CoatedConductor($b) => $e,
         }
     };
 }

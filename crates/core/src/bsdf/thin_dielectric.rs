@@ -52,6 +52,7 @@ impl ThinDielectricBxdf {
                 pdf: r / (r + t),
                 flags: BxdfFlags::SPECULAR | BxdfFlags::REFLECTION,
                 eta: 1.0,
+                pdf_is_proportional: false,
             })
         } else {
             Some(BsdfSample {
@@ -60,6 +61,7 @@ impl ThinDielectricBxdf {
                 pdf: t / (r + t),
                 flags: BxdfFlags::SPECULAR | BxdfFlags::TRANSMISSION,
                 eta: 1.0,
+                pdf_is_proportional: false,
             })
         }
     }

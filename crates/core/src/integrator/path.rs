@@ -3,6 +3,11 @@
 //! infinite lights when the ray leaves the scene), a direct lighting estimate, a
 //! BSDF-sampled continuation, and Russian roulette. Each block below is one step of the
 //! rendering equation `L_o = L_e + integral f L_i cos`.
+//!
+//! Surfaces without a BSDF (`interface`) are passed through without counting a bounce.
+//! For stochastic BSDFs (layered) the sampled pdf is only proportional to the density, so
+//! emission found by the continuation is MIS-weighted with `Bsdf::pdf` instead (pbrt-v4's
+//! `pdfIsProportional`).
 
 use super::{roulette, DirectEstimator, TraceStats};
 use crate::bsdf::BxdfFlags;
@@ -80,8 +85,12 @@ impl PathIntegrator {
                 }
             }
 
-            // Get the BSDF; stop at the depth limit.
-            let bsdf = scene.bsdf(prim.material, &si);
+            // Get the BSDF; pass through surfaces without one (`interface`) without counting
+            // a bounce; stop at the depth limit.
+            let Some(bsdf) = scene.bsdf(prim.material, &si) else {
+                ray = si.spawn_ray(ray.d);
+                continue;
+            };
             if depth == self.max_depth {
                 break;
             }
@@ -93,8 +102,14 @@ impl PathIntegrator {
                 l += beta * self.direct.estimate(scene, &si, &bsdf, sampler, stats);
             }
             // A continuation that ends at the depth limit only matters for the emission it
-            // may find.
-            if depth == self.max_depth && non_specular && !self.direct.uses_continuation() {
+            // may find: none counts after a non-specular event when the direct strategy
+            // ignores continuations, so skip it unless the BSDF also has a specular part
+            // (a smooth coat over a diffuse base), whose emission always counts.
+            if depth == self.max_depth
+                && non_specular
+                && !bsdf.flags().is_specular()
+                && !self.direct.uses_continuation()
+            {
                 break;
             }
 
@@ -109,7 +124,13 @@ impl PathIntegrator {
             if bs.flags.contains(BxdfFlags::TRANSMISSION) {
                 eta_scale *= bs.eta * bs.eta;
             }
-            prev_bsdf_pdf = bs.pdf;
+            // A stochastic BSDF's sampled pdf is only proportional to the true one: MIS needs
+            // the (estimated) density itself, as pbrt-v4's `pdfIsProportional`.
+            prev_bsdf_pdf = if bs.pdf_is_proportional {
+                bsdf.pdf(si.wo, bs.wi)
+            } else {
+                bs.pdf
+            };
             prev = si.intr;
             ray = si.spawn_ray(bs.wi);
 

@@ -3,12 +3,18 @@
 //! [`TextureContext`]; [`Material::from_desc`] copies them from the description and
 //! [`Material::bsdf`] resolves them (alphas from roughness, conductor indices from a
 //! reflectance) per hit. Constant textures give the same BSDF at every hit.
+//!
+//! Two materials are not surfaces themselves: [`Material::Mix`] names two others and
+//! picks one per shading point ([`Material::mix_choice`]; the scene follows the choice,
+//! see `Scene::bsdf`), and [`Material::Interface`] has no BSDF at all, so rays pass
+//! through it.
 
 use crate::bsdf::{
-    roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf,
-    ThinDielectricBxdf, TrowbridgeReitz,
+    roughness_to_alpha, Bsdf, Bxdf, CoatedConductorBxdf, CoatedDiffuseBxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf,
+    DiffuseTransmissionBxdf, LayeredBxdf, ThinDielectricBxdf, TrowbridgeReitz,
 };
 use crate::color::Rgb;
+use crate::sampling::hash_u64s;
 use crate::scene::MaterialDesc;
 use crate::shape::SurfaceInteraction;
 use crate::texture::{FloatTexture, RgbTexture, TextureContext};
@@ -61,6 +67,31 @@ pub enum Material {
         /// Factor on both.
         scale: f32,
     },
+    /// A dielectric coat over a Lambertian base.
+    CoatedDiffuse(CoatedDiffuseBxdf),
+    /// A dielectric coat over a conductor.
+    CoatedConductor(CoatedConductorBxdf),
+    /// One of two materials per shading point.
+    Mix {
+        /// Indices into the scene's materials.
+        materials: [u32; 2],
+        /// Probability of choosing the second.
+        amount: f32,
+    },
+    /// No surface: rays pass through.
+    Interface,
+}
+
+/// The largest `|g|` a slab keeps: pbrt clamps `g` to [-1, 1], but the Henyey-Greenstein
+/// formula is 0/0 at the ends (a Dirac delta), so we stop just short of them.
+const MAX_ABS_G: f32 = 0.999;
+
+/// The conductor index `(eta, k)` whose normal-incidence reflectance is `r` (pbrt-v4,
+/// with `eta = 1`: `((eta-1)^2 + k^2) / ((eta+1)^2 + k^2) = r` gives `k = 2 sqrt(r) /
+/// sqrt(1 - r)`), `r` clamped to [0, 0.9999].
+fn index_from_reflectance(r: Rgb) -> (Rgb, Rgb) {
+    let r = r.map(|v| v.clamp(0.0, 0.9999));
+    (Rgb::WHITE, r.map(|v| 2.0 * v.sqrt() / (1.0 - v).max(0.0).sqrt()))
 }
 
 /// Microfacet alpha from a user roughness, remapped as pbrt does when asked.
@@ -114,7 +145,104 @@ impl Material {
                 transmittance,
                 scale,
             },
+            MaterialDesc::CoatedDiffuse {
+                reflectance,
+                u_roughness,
+                v_roughness,
+                remap_roughness,
+                thickness,
+                eta,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+            } => Self::CoatedDiffuse(LayeredBxdf {
+                top: coat(eta, u_roughness, v_roughness, remap_roughness),
+                bottom: DiffuseBxdf {
+                    r: reflectance.map(|v| v.clamp(0.0, 1.0)),
+                },
+                thickness: thickness.max(f32::MIN_POSITIVE),
+                albedo: albedo.map(|v| v.clamp(0.0, 1.0)),
+                g: g.clamp(-MAX_ABS_G, MAX_ABS_G),
+                max_depth,
+                n_samples: n_samples.max(1),
+            }),
+            MaterialDesc::CoatedConductor {
+                interface_u_roughness,
+                interface_v_roughness,
+                interface_eta,
+                conductor_eta,
+                conductor_k,
+                reflectance,
+                conductor_u_roughness,
+                conductor_v_roughness,
+                remap_roughness,
+                thickness,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+            } => {
+                let top = coat(
+                    interface_eta,
+                    interface_u_roughness,
+                    interface_v_roughness,
+                    remap_roughness,
+                );
+                let (eta, k) = reflectance.map_or((conductor_eta, conductor_k), index_from_reflectance);
+                Self::CoatedConductor(LayeredBxdf {
+                    top,
+                    // pbrt-v4: the base's index is relative to the coat above it.
+                    bottom: ConductorBxdf {
+                        distrib: TrowbridgeReitz::new(
+                            alpha(conductor_u_roughness, remap_roughness),
+                            alpha(conductor_v_roughness, remap_roughness),
+                        ),
+                        eta: eta / top.eta,
+                        k: k / top.eta,
+                    },
+                    thickness: thickness.max(f32::MIN_POSITIVE),
+                    albedo: albedo.map(|v| v.clamp(0.0, 1.0)),
+                    g: g.clamp(-MAX_ABS_G, MAX_ABS_G),
+                    max_depth,
+                    n_samples: n_samples.max(1),
+                })
+            }
+            MaterialDesc::Mix { materials, amount } => Self::Mix { materials, amount },
+            MaterialDesc::Interface => Self::Interface,
         }
+    }
+
+    /// For [`Self::Mix`], the index of the material used at `si` (pbrt-v4
+    /// `MixMaterial::ChooseMaterial`): the first when `amount <= 0`, the second when
+    /// `amount >= 1`, else the second when a hash of the point, `wo` and the two indices,
+    /// mapped to [0, 1), is below `amount`. `None` for every other material.
+    #[must_use]
+    pub fn mix_choice(&self, si: &SurfaceInteraction) -> Option<u32> {
+        let Self::Mix { materials, amount } = *self else {
+            return None;
+        };
+        if amount <= 0.0 {
+            return Some(materials[0]);
+        }
+        if amount >= 1.0 {
+            return Some(materials[1]);
+        }
+        let p = si.p();
+        let bits = |v: f32| u64::from(v.to_bits());
+        let h = hash_u64s(&[
+            bits(p.x),
+            bits(p.y),
+            bits(p.z),
+            bits(si.wo.x),
+            bits(si.wo.y),
+            bits(si.wo.z),
+            u64::from(materials[0]),
+            u64::from(materials[1]),
+        ]);
+        // The top 24 bits: a uniform number in [0, 1) exactly representable as f32.
+        let u = (h >> 40) as f32 / 16_777_216.0;
+        Some(if amount < u { materials[0] } else { materials[1] })
     }
 
     /// True when some parameter is a non-constant texture, so [`Self::bsdf`] needs a
@@ -148,13 +276,15 @@ impl Material {
                 transmittance,
                 ..
             } => !(reflectance.is_constant() && transmittance.is_constant()),
+            Self::CoatedDiffuse(_) | Self::CoatedConductor(_) | Self::Mix { .. } | Self::Interface => false,
         }
     }
 
     /// The BSDF at a hit, in the shading frame of `si.ns` with `si.dpdu` as first tangent,
-    /// with the textures evaluated at `ctx`.
+    /// with the textures evaluated at `ctx`; `None` for [`Self::Interface`] and for
+    /// [`Self::Mix`] (resolve it with [`Self::mix_choice`] first).
     #[must_use]
-    pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Bsdf {
+    pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<Bsdf> {
         let bxdf = match self {
             Self::Diffuse { reflectance } => Bxdf::Diffuse(DiffuseBxdf {
                 r: reflectance.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
@@ -168,12 +298,7 @@ impl Material {
                 remap_roughness,
             } => {
                 let (eta, k) = match reflectance {
-                    Some(r) => {
-                        // pbrt-v4: the index with eta = 1 whose normal-incidence
-                        // reflectance ((eta-1)^2 + k^2) / ((eta+1)^2 + k^2) is r.
-                        let r = r.evaluate(ctx).map(|v| v.clamp(0.0, 0.9999));
-                        (Rgb::WHITE, r.map(|v| 2.0 * v.sqrt() / (1.0 - v).max(0.0).sqrt()))
-                    }
+                    Some(r) => index_from_reflectance(r.evaluate(ctx)),
                     None => (eta.evaluate(ctx), k.evaluate(ctx)),
                 };
                 let distrib = TrowbridgeReitz::new(
@@ -203,8 +328,19 @@ impl Material {
                 r: (reflectance.evaluate(ctx) * *scale).map(|v| v.clamp(0.0, 1.0)),
                 t: (transmittance.evaluate(ctx) * *scale).map(|v| v.clamp(0.0, 1.0)),
             }),
+            Self::CoatedDiffuse(b) => Bxdf::CoatedDiffuse(*b),
+            Self::CoatedConductor(b) => Bxdf::CoatedConductor(*b),
+            Self::Mix { .. } | Self::Interface => return None,
         };
-        Bsdf::new(si.ns, si.dpdu, bxdf)
+        Some(Bsdf::new(si.ns, si.dpdu, bxdf))
+    }
+}
+
+/// The dielectric coat of a layered material; an index of 0 means 1, as in pbrt-v4.
+fn coat(eta: f32, u_roughness: f32, v_roughness: f32, remap: bool) -> DielectricBxdf {
+    DielectricBxdf {
+        eta: if eta == 0.0 { 1.0 } else { eta },
+        distrib: TrowbridgeReitz::new(alpha(u_roughness, remap), alpha(v_roughness, remap)),
     }
 }
 
@@ -234,7 +370,7 @@ mod tests {
 
     fn bxdf(m: &Material) -> Bxdf {
         let si = hit();
-        *m.bsdf(&si, &TextureContext::at_point(&si)).bxdf()
+        *m.bsdf(&si, &TextureContext::at_point(&si)).unwrap().bxdf()
     }
 
     #[test]

@@ -4,12 +4,14 @@
 
 use std::sync::Arc;
 
+use super::MaterialId;
 use super::{
     EnvMapping, FloatTexture, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, RgbTexture,
     Scene, SceneDescription, ShapeDesc,
 };
 use crate::accel::Bvh;
 use crate::camera::{Camera, PerspectiveCamera};
+use crate::color::Rgb;
 use crate::film::Filter;
 use crate::light::{
     DiffuseAreaLight, DistantLight, ImageInfiniteLight, Light, PointLight, PowerLightSampler, SpotLight,
@@ -155,8 +157,65 @@ impl SceneDescription {
                     check_non_negative(&format!("transmittance of material {i}"), &rgb_constant(transmittance))?;
                     check_non_negative(&format!("scale of material {i}"), &[*scale])?;
                 }
+                MaterialDesc::CoatedDiffuse {
+                    reflectance,
+                    u_roughness,
+                    v_roughness,
+                    thickness,
+                    eta,
+                    albedo,
+                    g,
+                    ..
+                } => {
+                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
+                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                    check_positive_eta(i, *eta)?;
+                    check_slab(i, *thickness, *albedo, *g)?;
+                }
+                MaterialDesc::CoatedConductor {
+                    interface_u_roughness,
+                    interface_v_roughness,
+                    interface_eta,
+                    conductor_eta,
+                    conductor_k,
+                    reflectance,
+                    conductor_u_roughness,
+                    conductor_v_roughness,
+                    thickness,
+                    albedo,
+                    g,
+                    ..
+                } => {
+                    check_non_negative(
+                        &format!("roughness of material {i}"),
+                        &[
+                            *interface_u_roughness,
+                            *interface_v_roughness,
+                            *conductor_u_roughness,
+                            *conductor_v_roughness,
+                        ],
+                    )?;
+                    check_positive_eta(i, *interface_eta)?;
+                    check_non_negative(&format!("conductor eta of material {i}"), &conductor_eta.to_array())?;
+                    check_non_negative(&format!("conductor k of material {i}"), &conductor_k.to_array())?;
+                    if let Some(r) = reflectance {
+                        check_non_negative(&format!("reflectance of material {i}"), &r.to_array())?;
+                    }
+                    check_slab(i, *thickness, *albedo, *g)?;
+                }
+                MaterialDesc::Mix { materials, amount } => {
+                    check_finite(&format!("amount of material {i}"), &[*amount])?;
+                    if let Some(m) = materials.iter().find(|m| **m as usize >= self.materials.len()) {
+                        return Err(invalid(
+                            format!("material {i}"),
+                            format!("mixes material index {m}, out of range"),
+                        ));
+                    }
+                }
+                MaterialDesc::Interface => {}
             }
         }
+        check_mix_cycles(&self.materials)?;
         validate_shapes(&self.shapes, self.materials.len())?;
         for (k, o) in self.objects.iter().enumerate() {
             validate_shapes(&o.shapes, self.materials.len())?;
@@ -413,6 +472,56 @@ fn check_positive_eta(material: usize, eta: f32) -> Result<(), BuildError> {
     }
 }
 
+/// The slab of a layered material: thickness and albedo finite and non-negative, `g`
+/// finite (clamped as pbrt does when the material is built).
+fn check_slab(material: usize, thickness: f32, albedo: Rgb, g: f32) -> Result<(), BuildError> {
+    check_non_negative(&format!("thickness of material {material}"), &[thickness])?;
+    check_non_negative(&format!("albedo of material {material}"), &albedo.to_array())?;
+    check_finite(&format!("g of material {material}"), &[g])
+}
+
+/// Error when a `Mix` material contains itself, directly or through other mixes (a
+/// depth-first search over the mix graph).
+fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
+    // 0: not visited, 1: on the current path, 2: done.
+    let mut state = vec![0u8; materials.len()];
+    for root in 0..materials.len() {
+        if state[root] != 0 {
+            continue;
+        }
+        // Stack of (material, next child to visit).
+        let mut stack = vec![(root, 0usize)];
+        state[root] = 1;
+        while let Some(&mut (m, ref mut next)) = stack.last_mut() {
+            let children: &[MaterialId] = match &materials[m] {
+                MaterialDesc::Mix { materials, .. } => materials,
+                _ => &[],
+            };
+            if let Some(&c) = children.get(*next) {
+                *next += 1;
+                let c = c as usize;
+                match state[c] {
+                    0 => {
+                        state[c] = 1;
+                        stack.push((c, 0));
+                    }
+                    1 => {
+                        return Err(invalid(
+                            format!("material {c}"),
+                            "a mix material contains itself (directly or through other mixes)",
+                        ))
+                    }
+                    _ => {}
+                }
+            } else {
+                state[m] = 2;
+                stack.pop();
+            }
+        }
+    }
+    Ok(())
+}
+
 fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
     if r.iter().all(|v| *v > 0.0 && v.is_finite()) {
         Ok(())
@@ -425,7 +534,8 @@ impl Scene {
     /// Validate the description and build the scene.
     pub fn build(desc: &SceneDescription) -> Result<Self, BuildError> {
         desc.validate()?;
-        let materials = desc.materials.iter().map(Material::from_desc).collect();
+        let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
+        let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         for s in &desc.shapes {
@@ -528,6 +638,7 @@ impl Scene {
             sampler: desc.sampler,
             integrator: desc.integrator,
             instances,
+            has_interfaces,
             bvh,
         })
     }

@@ -334,6 +334,75 @@ pub enum MaterialDesc {
         /// Factor applied to both.
         scale: f32,
     },
+    /// A dielectric coat over a Lambertian base with a scattering slab between them (pbrt
+    /// `coateddiffuse`), evaluated stochastically.
+    CoatedDiffuse {
+        /// Albedo of the base, in [0, 1].
+        reflectance: Rgb,
+        /// Coat roughness along the shading tangent.
+        u_roughness: f32,
+        /// Coat roughness along the bitangent.
+        v_roughness: f32,
+        /// As for [`MaterialDesc::Conductor`].
+        remap_roughness: bool,
+        /// Slab thickness in mean free paths (pbrt default 0.01).
+        thickness: f32,
+        /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
+        eta: f32,
+        /// Single-scattering albedo of the slab (pbrt default 0: absorbing only).
+        albedo: Rgb,
+        /// Henyey-Greenstein asymmetry of the slab, in (-1, 1) (pbrt default 0).
+        g: f32,
+        /// Maximum scattering events of a random walk (pbrt default 10).
+        max_depth: u32,
+        /// Random walks per evaluation (pbrt default 1).
+        n_samples: u32,
+    },
+    /// A dielectric coat over a conductor with a scattering slab between them (pbrt
+    /// `coatedconductor`), evaluated stochastically.
+    CoatedConductor {
+        /// Coat roughness along the shading tangent.
+        interface_u_roughness: f32,
+        /// Coat roughness along the bitangent.
+        interface_v_roughness: f32,
+        /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
+        interface_eta: f32,
+        /// Real part of the conductor's index of refraction, relative to vacuum as pbrt
+        /// gives it (divided by the coat's index when the material is built).
+        conductor_eta: Rgb,
+        /// Imaginary part, relative to vacuum (divided likewise).
+        conductor_k: Rgb,
+        /// When given, replaces `conductor_eta` and `conductor_k` as for
+        /// [`MaterialDesc::Conductor`] (relative to the coat).
+        reflectance: Option<Rgb>,
+        /// Conductor roughness along the shading tangent.
+        conductor_u_roughness: f32,
+        /// Conductor roughness along the bitangent.
+        conductor_v_roughness: f32,
+        /// Remap both roughnesses as for [`MaterialDesc::Conductor`].
+        remap_roughness: bool,
+        /// Slab thickness in mean free paths (pbrt default 0.01).
+        thickness: f32,
+        /// Single-scattering albedo of the slab (pbrt default 0).
+        albedo: Rgb,
+        /// Henyey-Greenstein asymmetry of the slab (pbrt default 0).
+        g: f32,
+        /// Maximum scattering events of a random walk (pbrt default 10).
+        max_depth: u32,
+        /// Random walks per evaluation (pbrt default 1).
+        n_samples: u32,
+    },
+    /// One of two materials per shading point (pbrt `mix`): the second with probability
+    /// `amount`, chosen by a hash of the point and `wo`, so deterministically.
+    Mix {
+        /// The two materials (indices into [`SceneDescription::materials`]; no cycles).
+        materials: [MaterialId; 2],
+        /// Probability of the second, clamped to [0, 1] (pbrt default 0.5).
+        amount: f32,
+    },
+    /// No surface at all (pbrt `interface`, which marks medium boundaries): rays pass
+    /// straight through, shadow rays included.
+    Interface,
 }
 
 /// The emission of an area light attached to a shape (pbrt `AreaLightSource "diffuse"`).

@@ -92,12 +92,14 @@ impl Instance {
         Some((prim, hit))
     }
 
-    /// True when something in the instance blocks `ray` within `t_max`.
+    /// True when a primitive of the instance for which `blocks` holds is hit by `ray`
+    /// within `t_max`.
     #[must_use]
-    pub fn any_hit(&self, ray: &Ray, t_max: f32) -> bool {
+    pub fn any_hit(&self, ray: &Ray, t_max: f32, blocks: impl Fn(&Primitive) -> bool) -> bool {
         let local = self.local_ray(ray);
         self.object.bvh.any_hit(&local, t_max, |i, r, t| {
-            self.object.primitives[i as usize].shape.intersect(r, t).is_some()
+            let p = &self.object.primitives[i as usize];
+            blocks(p) && p.shape.intersect(r, t).is_some()
         })
     }
 

@@ -1,5 +1,12 @@
 //! Layer 4: the render-ready scene. Built from a [`SceneDescription`]: primitives (shape,
 //! material, optional light) in a flat array owned by a BVH, materials and lights by index.
+//!
+//! Surfaces of the `interface` material have no BSDF: [`Scene::bsdf`] returns `None` and
+//! the integrators continue rays through them without counting a bounce. Shadow rays
+//! ([`Scene::unoccluded_ray`]) pass through them too, so such a surface changes nothing
+//! (pbrt-v4's `PathIntegrator` instead lets them block shadow rays and counts emission
+//! found through them in full; its `VolPathIntegrator`, for which interfaces exist, lets
+//! its shadow rays through as we do).
 
 mod build;
 mod description;
@@ -65,27 +72,12 @@ pub struct Scene {
     pub integrator: IntegratorDesc,
     /// Placed objects; the BVH refers to them after the primitives.
     pub instances: Vec<Instance>,
+    /// True when some material is an `interface`, which shadow rays must skip.
+    has_interfaces: bool,
     bvh: Bvh,
 }
 
 impl Scene {
-    /// The BSDF of `material` at `si`. Textured materials are evaluated with the pixel
-    /// footprint at `si` (pbrt-v4 `Approximate_dp_dxy` from the camera, then
-    /// `ComputeDifferentials`), at every path vertex; other materials skip that work.
-    #[must_use]
-    pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Bsdf {
-        let m = &self.materials[material as usize];
-        let ctx = if m.is_textured() {
-            let (dpdx, dpdy) = self
-                .camera
-                .approximate_dp_dxy(si.p(), si.n(), self.sampler.samples_per_pixel);
-            TextureContext::with_footprint(si, dpdx, dpdy)
-        } else {
-            TextureContext::at_point(si)
-        };
-        m.bsdf(si, &ctx)
-    }
-
     /// Closest hit along `ray` (for `t` in `(0, inf)`).
     #[must_use]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit<'_>> {
@@ -116,17 +108,56 @@ impl Scene {
         }
     }
 
-    /// True when nothing blocks `ray` within `(0, t_max)`.
+    /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces do not.
     #[must_use]
     pub fn unoccluded_ray(&self, ray: &Ray, t_max: f32) -> bool {
         let n = self.primitives.len() as u32;
+        let blocks =
+            |p: &Primitive| !self.has_interfaces || !matches!(self.materials[p.material as usize], Material::Interface);
         !self.bvh.any_hit(ray, t_max, |i, r, t| {
             if i < n {
-                self.primitives[i as usize].shape.intersect(r, t).is_some()
+                let p = &self.primitives[i as usize];
+                blocks(p) && p.shape.intersect(r, t).is_some()
             } else {
-                self.instances[(i - n) as usize].any_hit(r, t)
+                self.instances[(i - n) as usize].any_hit(r, t, blocks)
             }
         })
+    }
+
+    /// The BSDF of material `material` at `si`, following the choices of `mix` materials
+    /// (validation rules out cycles); `None` for an `interface`, which rays pass through.
+    #[must_use]
+    ///
+    /// Textured materials are evaluated with the pixel footprint at `si` (pbrt-v4
+    /// `Approximate_dp_dxy` from the camera, then `ComputeDifferentials`), at every path
+    /// vertex; other materials skip that work.
+    pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
+        let m = self.resolve_material(material, si);
+        let ctx = if m.is_textured() {
+            let (dpdx, dpdy) = self
+                .camera
+                .approximate_dp_dxy(si.p(), si.n(), self.sampler.samples_per_pixel);
+            TextureContext::with_footprint(si, dpdx, dpdy)
+        } else {
+            TextureContext::at_point(si)
+        };
+        m.bsdf(si, &ctx)
+    }
+
+    /// True when material `material` at `si` is an `interface` (no surface), without
+    /// building a BSDF.
+    #[must_use]
+    pub fn passes_through(&self, material: u32, si: &SurfaceInteraction) -> bool {
+        self.has_interfaces && matches!(self.resolve_material(material, si), Material::Interface)
+    }
+
+    /// The material used at `si`: `material` itself, or what its mixes choose there.
+    fn resolve_material(&self, material: u32, si: &SurfaceInteraction) -> &Material {
+        let mut m = &self.materials[material as usize];
+        while let Some(next) = m.mix_choice(si) {
+            m = &self.materials[next as usize];
+        }
+        m
     }
 
     /// True when the segment between two points is free (both ends offset off their

@@ -17,6 +17,7 @@ use mcrender_core::scene::{
 };
 
 use super::graphics_state::{GraphicsState, MaterialRef};
+use super::materials::resolve_material;
 use super::params::ParamSet;
 use super::LoadedScene;
 use crate::error::{Location, SceneError};
@@ -55,7 +56,7 @@ pub struct SceneBuilder {
     pub(super) option_seed: Option<i32>,
     pub(super) integrator: IntegratorDesc,
     pub(super) output_filename: Option<String>,
-    pub(super) named_materials: HashMap<String, (MaterialDesc, Location)>,
+    pub(super) named_materials: HashMap<String, (MaterialRef, Location)>,
     /// Named textures and the MIP maps of the images read.
     pub(super) textures: super::textures::NamedTextures,
     pub(super) shapes: Vec<(ShapeDesc, MaterialRef)>,
@@ -301,22 +302,12 @@ impl SceneBuilder {
 
         let mut materials: Vec<MaterialDesc> = Vec::new();
         let mut material_ids: HashMap<String, MaterialId> = HashMap::new();
+        let named = &self.named_materials;
         let mut resolve = |list: Vec<(ShapeDesc, MaterialRef)>| -> Result<Vec<ShapeDesc>, SceneError> {
             let mut shapes = Vec::with_capacity(list.len());
             for (mut shape, material) in list {
-                let desc = match material {
-                    MaterialRef::Inline(desc) => desc,
-                    MaterialRef::Named { name, loc } => match self.named_materials.get(&name) {
-                        Some((desc, _)) => desc.clone(),
-                        None => {
-                            return Err(SceneError::invalid(
-                                &loc,
-                                format!("named material \"{name}\" is not defined"),
-                            ))
-                        }
-                    },
-                };
-                shape.material = intern_material(&mut materials, &mut material_ids, desc);
+                shape.material =
+                    resolve_material(named, &material, &mut materials, &mut material_ids, &mut Vec::new())?;
                 shapes.push(shape);
             }
             Ok(shapes)
@@ -355,22 +346,4 @@ impl SceneBuilder {
             warnings: self.warnings,
         })
     }
-}
-
-/// Index of `desc` in `materials`, adding it when it is new.
-fn intern_material(
-    materials: &mut Vec<MaterialDesc>,
-    ids: &mut HashMap<String, MaterialId>,
-    desc: MaterialDesc,
-) -> MaterialId {
-    // The key is the description's text with -0 folded into +0, so equal values share it.
-    let key = format!("{desc:?}").replace("-0.0,", "0.0,").replace("-0.0 ", "0.0 ");
-    if let Some(&id) = ids.get(&key) {
-        return id;
-    }
-    // There are never more distinct materials than shapes, far below 2^32.
-    let id = materials.len() as MaterialId;
-    materials.push(desc);
-    ids.insert(key, id);
-    id
 }

@@ -23,6 +23,15 @@ pub enum MaterialRef {
         /// Location of the `NamedMaterial` directive.
         loc: Location,
     },
+    /// A `mix` of two named materials, resolved like [`MaterialRef::Named`].
+    Mix {
+        /// The names of the two materials.
+        names: [String; 2],
+        /// Probability of the second.
+        amount: f32,
+        /// Location of the `materials` parameter.
+        loc: Location,
+    },
 }
 
 /// Parameters set by `Attribute "target" ...`, per target.

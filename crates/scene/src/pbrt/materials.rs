@@ -14,12 +14,25 @@
 //! - `thindielectric`: `eta` as for `dielectric`.
 //! - `diffusetransmission`: `rgb reflectance`, `rgb transmittance` (default 0.25 each),
 //!   `float scale` (default 1).
+//! - `coateddiffuse`: `rgb reflectance` (default 0.5), roughness as for `conductor`,
+//!   `eta` as for `dielectric`, and the slab: `float thickness` (default 0.01),
+//!   `rgb albedo` (default 0), `float g` (default 0, in [-1, 1]), `integer maxdepth`
+//!   (default 10), `integer nsamples` (default 1).
+//! - `coatedconductor`: `interface.roughness`/`interface.uroughness`/`interface.vroughness`,
+//!   `interface.eta` (default 1.5), `conductor.eta`/`conductor.k` (default copper) or
+//!   `rgb reflectance`, `conductor.roughness`/`conductor.uroughness`/`conductor.vroughness`,
+//!   `remaproughness`, and the slab as for `coateddiffuse`.
+//! - `mix`: `string materials` (two named materials, resolved with the other names once
+//!   the file is read, so they may be defined later; a mix that contains itself is an
+//!   error), `float amount` (default 0.5).
+//! - `interface` (also `""` and `"none"`, as pbrt-v4): no surface.
 //!
-//! `coateddiffuse`, `coatedconductor`, `mix`, `interface`, `hair`, `measured` and
-//! `subsurface` are reported as not supported yet.
+//! `hair`, `measured` and `subsurface` are reported as not supported yet.
+
+use std::collections::HashMap;
 
 use mcrender_core::color::Rgb;
-use mcrender_core::scene::{FloatTexture, MaterialDesc, RgbTexture};
+use mcrender_core::scene::{FloatTexture, MaterialDesc, MaterialId, RgbTexture};
 
 use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
@@ -29,23 +42,14 @@ use super::spectrum_rgb::{sampled_spectrum, SpectrumRole};
 use crate::error::{Location, SceneError};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
-const KNOWN_MATERIALS: &[&str] = &[
-    "coateddiffuse",
-    "coatedconductor",
-    "hair",
-    "measured",
-    "mix",
-    "subsurface",
-    "interface",
-];
+const KNOWN_MATERIALS: &[&str] = &["hair", "measured", "subsurface"];
 
 impl SceneBuilder {
     /// `Material "type" ...`: the material of subsequent shapes in this attribute scope.
     pub fn material(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("Material", loc)?;
         params.add_inherited(&self.state.attributes.material);
-        let desc = self.material_desc(kind, params, loc)?;
-        self.state.material = MaterialRef::Inline(desc);
+        self.state.material = self.material_desc(kind, params, loc)?;
         Ok(())
     }
 
@@ -65,8 +69,8 @@ impl SceneBuilder {
                 format!("MakeNamedMaterial \"{name}\" needs a \"string type\" parameter"),
             ));
         };
-        let desc = self.material_desc(&kind, params, &kind_loc)?;
-        self.named_materials.insert(name.to_string(), (desc, loc.clone()));
+        let material = self.material_desc(&kind, params, &kind_loc)?;
+        self.named_materials.insert(name.to_string(), (material, loc.clone()));
         Ok(())
     }
 
@@ -78,7 +82,58 @@ impl SceneBuilder {
     }
 
     /// The material of `kind` from `params`; `loc` is where the type was named.
-    fn material_desc(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<MaterialDesc, SceneError> {
+    fn material_desc(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<MaterialRef, SceneError> {
+        if kind == "mix" {
+            return self.mix(params);
+        }
+        self.plain_material_desc(kind, params, loc).map(MaterialRef::Inline)
+    }
+
+    /// `mix`: `string materials` (two names), `float amount` (default 0.5).
+    fn mix(&mut self, params: &ParamSet) -> Result<MaterialRef, SceneError> {
+        let Some(p) = params.lookup("materials", &[ParamType::String])? else {
+            return Err(SceneError::syntax(
+                &params.loc,
+                format!(
+                    "{} of type \"mix\" needs \"string materials\" with two material names",
+                    params.owner
+                ),
+            ));
+        };
+        let names: [String; 2] = match p.strings() {
+            [a, b] => [a.clone(), b.clone()],
+            other => {
+                return Err(SceneError::syntax(
+                    &p.loc,
+                    format!(
+                        "\"{}\" of {} needs exactly two material names, found {}",
+                        p.decl(),
+                        params.owner,
+                        other.len()
+                    ),
+                ))
+            }
+        };
+        let loc = p.loc.clone();
+        let amount = params.float("amount", 0.5)?;
+        if !amount.is_finite() {
+            let p = params.get("amount").map_or(&params.loc, |p| &p.loc);
+            return Err(SceneError::invalid(
+                p,
+                format!("\"amount\" of {} must be a finite number", params.owner),
+            ));
+        }
+        self.warn_unused(params);
+        Ok(MaterialRef::Mix { names, amount, loc })
+    }
+
+    /// A material that is not a `mix`.
+    fn plain_material_desc(
+        &mut self,
+        kind: &str,
+        params: &ParamSet,
+        loc: &Location,
+    ) -> Result<MaterialDesc, SceneError> {
         let context = if params.owner.starts_with("MakeNamedMaterial") {
             format!(" (in {})", params.owner)
         } else {
@@ -176,10 +231,74 @@ impl SceneBuilder {
                     scale,
                 })
             }
-            "" | "none" => Err(SceneError::unsupported(
-                loc,
-                format!("interface materials (material type \"{kind}\") are not supported yet{context}"),
-            )),
+            "coateddiffuse" => {
+                let reflectance = self
+                    .constant_spectrum_param(params, "reflectance", SpectrumKind::Albedo)?
+                    .unwrap_or(Rgb::splat(0.5));
+                check_unit_interval(params, "reflectance", reflectance)?;
+                let (u_roughness, v_roughness) = roughness(params)?;
+                let remap_roughness = params.bool("remaproughness", true)?;
+                let eta = dielectric_eta(params)?;
+                let slab = slab(self, params)?;
+                self.warn_unused(params);
+                Ok(MaterialDesc::CoatedDiffuse {
+                    reflectance,
+                    u_roughness,
+                    v_roughness,
+                    remap_roughness,
+                    thickness: slab.thickness,
+                    eta,
+                    albedo: slab.albedo,
+                    g: slab.g,
+                    max_depth: slab.max_depth,
+                    n_samples: slab.n_samples,
+                })
+            }
+            "coatedconductor" => {
+                let (interface_u_roughness, interface_v_roughness) = prefixed_roughness(params, "interface.")?;
+                let interface_eta = dielectric_eta_named(params, "interface.eta")?;
+                let reflectance = self.constant_spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
+                let eta = self.constant_spectrum_param(params, "conductor.eta", SpectrumKind::MetalIndex)?;
+                let k = self.constant_spectrum_param(params, "conductor.k", SpectrumKind::MetalIndex)?;
+                if reflectance.is_some() && (eta.is_some() || k.is_some()) {
+                    let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
+                    return Err(SceneError::invalid(
+                        p,
+                        format!(
+                            "{} has both \"reflectance\" and \"conductor.eta\"/\"conductor.k\"; give one or the other",
+                            params.owner
+                        ),
+                    ));
+                }
+                if let Some(r) = reflectance {
+                    check_unit_interval(params, "reflectance", r)?;
+                }
+                let (conductor_u_roughness, conductor_v_roughness) = prefixed_roughness(params, "conductor.")?;
+                let remap_roughness = params.bool("remaproughness", true)?;
+                let slab = slab(self, params)?;
+                self.warn_unused(params);
+                Ok(MaterialDesc::CoatedConductor {
+                    interface_u_roughness,
+                    interface_v_roughness,
+                    interface_eta,
+                    conductor_eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE)),
+                    conductor_k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK)),
+                    reflectance,
+                    conductor_u_roughness,
+                    conductor_v_roughness,
+                    remap_roughness,
+                    thickness: slab.thickness,
+                    albedo: slab.albedo,
+                    g: slab.g,
+                    max_depth: slab.max_depth,
+                    n_samples: slab.n_samples,
+                })
+            }
+            // pbrt-v4: no material at all; rays pass through (medium boundaries).
+            "interface" | "" | "none" => {
+                self.warn_unused(params);
+                Ok(MaterialDesc::Interface)
+            }
             _ if KNOWN_MATERIALS.contains(&kind) => Err(SceneError::unsupported(
                 loc,
                 format!("material type \"{kind}\" is not supported yet{context}"),
@@ -190,6 +309,125 @@ impl SceneBuilder {
             )),
         }
     }
+}
+
+/// The slab parameters shared by `coateddiffuse` and `coatedconductor`.
+struct Slab {
+    thickness: f32,
+    albedo: Rgb,
+    g: f32,
+    max_depth: u32,
+    n_samples: u32,
+}
+
+/// `float thickness` (default 0.01, >= 0), `rgb albedo` (default 0, in [0, 1]), `float g`
+/// (default 0, in [-1, 1]), `integer maxdepth` (default 10, >= 0), `integer nsamples`
+/// (default 1, >= 1).
+fn slab(builder: &SceneBuilder, params: &ParamSet) -> Result<Slab, SceneError> {
+    let bad = |name: &str, what: &str| {
+        let p = params.get(name).map_or(&params.loc, |p| &p.loc);
+        Err(SceneError::invalid(
+            p,
+            format!("\"{name}\" of {} must be {what}", params.owner),
+        ))
+    };
+    let thickness = params.float("thickness", 0.01)?;
+    if !(thickness >= 0.0 && thickness.is_finite()) {
+        return bad("thickness", "a finite number >= 0");
+    }
+    let albedo = builder
+        .constant_spectrum_param(params, "albedo", SpectrumKind::Albedo)?
+        .unwrap_or(Rgb::BLACK);
+    check_unit_interval(params, "albedo", albedo)?;
+    let g = params.float("g", 0.0)?;
+    if !(-1.0..=1.0).contains(&g) {
+        return bad("g", "between -1 and 1");
+    }
+    let max_depth = params.int("maxdepth", 10)?;
+    let Ok(max_depth) = u32::try_from(max_depth) else {
+        return bad("maxdepth", "at least 0");
+    };
+    let n_samples = params.int("nsamples", 1)?;
+    let n_samples = match u32::try_from(n_samples) {
+        Ok(n) if n >= 1 => n,
+        _ => return bad("nsamples", "at least 1"),
+    };
+    Ok(Slab {
+        thickness,
+        albedo,
+        g,
+        max_depth,
+        n_samples,
+    })
+}
+
+/// The id of the material `r` names, interning it (and, for a `mix`, the materials it
+/// names) into `materials`. `stack` holds the named materials being resolved, to report
+/// a `mix` that contains itself.
+pub(super) fn resolve_material(
+    named: &HashMap<String, (MaterialRef, Location)>,
+    r: &MaterialRef,
+    materials: &mut Vec<MaterialDesc>,
+    ids: &mut HashMap<String, MaterialId>,
+    stack: &mut Vec<String>,
+) -> Result<MaterialId, SceneError> {
+    match r {
+        MaterialRef::Inline(desc) => Ok(intern_material(materials, ids, desc.clone())),
+        MaterialRef::Named { name, loc } => {
+            let Some((target, _)) = named.get(name) else {
+                return Err(SceneError::invalid(
+                    loc,
+                    format!("named material \"{name}\" is not defined"),
+                ));
+            };
+            if stack.contains(name) {
+                return Err(SceneError::invalid(
+                    loc,
+                    format!(
+                        "mix material \"{name}\" contains itself (through {})",
+                        stack.join(" -> ")
+                    ),
+                ));
+            }
+            stack.push(name.clone());
+            let id = resolve_material(named, target, materials, ids, stack);
+            stack.pop();
+            id
+        }
+        MaterialRef::Mix { names, amount, loc } => {
+            let mut pair = [0; 2];
+            for (id, name) in pair.iter_mut().zip(names) {
+                let r = MaterialRef::Named {
+                    name: name.clone(),
+                    loc: loc.clone(),
+                };
+                *id = resolve_material(named, &r, materials, ids, stack)?;
+            }
+            let desc = MaterialDesc::Mix {
+                materials: pair,
+                amount: *amount,
+            };
+            Ok(intern_material(materials, ids, desc))
+        }
+    }
+}
+
+/// Index of `desc` in `materials`, adding it when it is new.
+pub(super) fn intern_material(
+    materials: &mut Vec<MaterialDesc>,
+    ids: &mut HashMap<String, MaterialId>,
+    desc: MaterialDesc,
+) -> MaterialId {
+    // The key is the description's text with -0 folded into +0, so equal values share it.
+    let key = format!("{desc:?}").replace("-0.0,", "0.0,").replace("-0.0 ", "0.0 ");
+    if let Some(&id) = ids.get(&key) {
+        return id;
+    }
+    // There are never more distinct materials than shapes, far below 2^32.
+    let id = materials.len() as MaterialId;
+    materials.push(desc);
+    ids.insert(key, id);
+    id
 }
 
 /// What a spectrum parameter describes, which decides the named spectra it accepts.
@@ -274,6 +512,26 @@ impl SceneBuilder {
     }
     }
 
+    /// [`Self::spectrum_param`] for parameters that are not texturable here yet (those of
+    /// the coated materials): a texture is reported as not supported.
+    fn constant_spectrum_param(
+        &self,
+        params: &ParamSet,
+        name: &str,
+        kind: SpectrumKind,
+    ) -> Result<Option<Rgb>, SceneError> {
+        match self.spectrum_param(params, name, kind)? {
+            None => Ok(None),
+            Some(t) => t.constant().map(Some).ok_or_else(|| {
+                let loc = params.get(name).map_or(&params.loc, |p| &p.loc);
+                SceneError::unsupported(
+                    loc,
+                    format!("a texture for \"{name}\" of {} is not supported yet", params.owner),
+                )
+            }),
+        }
+    }
+
     /// `uroughness` and `vroughness` (float textures), each defaulting to `roughness`, which
     /// defaults to 0. Constant roughnesses must not be negative.
     fn roughness(&self, params: &ParamSet) -> Result<(FloatTexture, FloatTexture), SceneError> {
@@ -302,11 +560,16 @@ impl SceneBuilder {
 /// `eta` of a dielectric: `float eta` or a named glass spectrum; default 1.5. pbrt treats
 /// an index of 0 as 1.
 fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
-    let Some(p) = params.lookup("eta", &[ParamType::Float, ParamType::Spectrum, ParamType::Texture])? else {
+    dielectric_eta_named(params, "eta")
+}
+
+/// [`dielectric_eta`] for the parameter `name` (`interface.eta` of `coatedconductor`).
+fn dielectric_eta_named(params: &ParamSet, name: &str) -> Result<f32, SceneError> {
+    let Some(p) = params.lookup(name, &[ParamType::Float, ParamType::Spectrum, ParamType::Texture])? else {
         return Ok(1.5);
     };
     let eta = match p.ty {
-        ParamType::Float => params.float("eta", 1.5)?,
+        ParamType::Float => params.float(name, 1.5)?,
         ParamType::Spectrum => match p.strings() {
             [named] => glass_eta(named).ok_or_else(|| {
                 SceneError::invalid(
@@ -347,10 +610,39 @@ fn dielectric_eta(params: &ParamSet) -> Result<f32, SceneError> {
     if !(eta >= 0.0 && eta.is_finite()) {
         return Err(SceneError::invalid(
             &p.loc,
-            format!("\"eta\" of {} must be a finite number > 0, found {eta}", params.owner),
+            format!(
+                "\"{name}\" of {} must be a finite number > 0, found {eta}",
+                params.owner
+            ),
         ));
     }
     Ok(if eta == 0.0 { 1.0 } else { eta })
+}
+
+/// `uroughness` and `vroughness`, each defaulting to `roughness`, which defaults to 0.
+fn roughness(params: &ParamSet) -> Result<(f32, f32), SceneError> {
+    prefixed_roughness(params, "")
+}
+
+/// [`roughness`] with the parameter names prefixed (`interface.`, `conductor.`).
+fn prefixed_roughness(params: &ParamSet, prefix: &str) -> Result<(f32, f32), SceneError> {
+    let names = [
+        format!("{prefix}roughness"),
+        format!("{prefix}uroughness"),
+        format!("{prefix}vroughness"),
+    ];
+    let r = params.float(&names[0], 0.0)?;
+    let (u, v) = (params.float(&names[1], r)?, params.float(&names[2], r)?);
+    for (name, value) in names.iter().zip([r, u, v]) {
+        if value < 0.0 {
+            let p = params.get(name).map_or(&params.loc, |p| &p.loc);
+            return Err(SceneError::invalid(
+                p,
+                format!("\"{name}\" of {} must not be negative", params.owner),
+            ));
+        }
+    }
+    Ok((u, v))
 }
 
 /// Error unless every channel of `value` (the parameter `name`) is in [0, 1].

@@ -10,17 +10,24 @@ use crate::shape::SurfaceInteraction;
 
 /// Radiance emitted towards `si` by whatever the ray from `si` in direction `wi` hits first
 /// (black for non-emitters; the infinite lights' emission for rays that leave the scene).
+/// The ray continues through `interface` surfaces (adding their emission, if any).
 pub fn emitted_toward(scene: &Scene, si: &SurfaceInteraction, wi: Vec3, stats: &mut TraceStats) -> Rgb {
-    stats.rays += 1;
-    let ray = si.spawn_ray(wi);
-    let Some(hit) = scene.intersect(&ray) else {
-        return scene
-            .infinite_lights
-            .iter()
-            .fold(Rgb::BLACK, |sum, &i| sum + scene.lights[i as usize].le(wi));
-    };
-    match hit.primitive.light.map(|i| &scene.lights[i as usize]) {
-        Some(Light::DiffuseArea(area)) => area.l(hit.si.n(), hit.si.wo),
-        _ => Rgb::BLACK,
+    let mut ray = si.spawn_ray(wi);
+    let mut sum = Rgb::BLACK;
+    loop {
+        stats.rays += 1;
+        let Some(hit) = scene.intersect(&ray) else {
+            return scene
+                .infinite_lights
+                .iter()
+                .fold(sum, |sum, &i| sum + scene.lights[i as usize].le(wi));
+        };
+        if let Some(Light::DiffuseArea(area)) = hit.primitive.light.map(|i| &scene.lights[i as usize]) {
+            sum += area.l(hit.si.n(), hit.si.wo);
+        }
+        if !scene.passes_through(hit.primitive.material, &hit.si) {
+            return sum;
+        }
+        ray = hit.si.spawn_ray(wi);
     }
 }

@@ -1,0 +1,302 @@
+//! The `coateddiffuse`, `coatedconductor`, `mix` and `interface` materials: parameters,
+//! defaults, named references and the messages for what is wrong.
+
+use std::path::Path;
+
+use mcrender_core::color::Rgb;
+use mcrender_core::scene::{MaterialDesc, SceneDescription};
+use mcrender_scene::pbrt::load_str;
+use mcrender_scene::SceneErrorKind;
+
+fn load(src: &str) -> (SceneDescription, Vec<String>) {
+    let s = load_str(src, "scene.pbrt", Path::new("")).unwrap_or_else(|e| panic!("{e}"));
+    let warnings = s.warnings.into_iter().filter(|w| !w.contains("no lights")).collect();
+    (s.description, warnings)
+}
+
+/// The material of a sphere given `Material <decl>`, and the warnings.
+fn material(decl: &str) -> (MaterialDesc, Vec<String>) {
+    let (d, w) = load(&format!("WorldBegin\nMaterial {decl}\nShape \"sphere\""));
+    (d.materials[d.shapes[0].material as usize].clone(), w)
+}
+
+fn error(src: &str) -> (SceneErrorKind, String) {
+    let e = load_str(src, "scene.pbrt", Path::new("")).unwrap_err();
+    (e.kind, e.to_string())
+}
+
+fn material_error(decl: &str) -> (SceneErrorKind, String) {
+    error(&format!("WorldBegin\nMaterial {decl}\nShape \"sphere\""))
+}
+
+#[test]
+fn coateddiffuse_defaults_are_pbrts() {
+    let (m, w) = material("\"coateddiffuse\"");
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(
+        m,
+        MaterialDesc::CoatedDiffuse {
+            reflectance: Rgb::splat(0.5),
+            u_roughness: 0.0,
+            v_roughness: 0.0,
+            remap_roughness: true,
+            thickness: 0.01,
+            eta: 1.5,
+            albedo: Rgb::BLACK,
+            g: 0.0,
+            max_depth: 10,
+            n_samples: 1,
+        }
+    );
+}
+
+#[test]
+fn coateddiffuse_reads_every_parameter() {
+    let (m, w) = material(
+        "\"coateddiffuse\" \"rgb reflectance\" [0.1 0.2 0.3] \"float roughness\" 0.3 \"float vroughness\" 0.1 \
+         \"bool remaproughness\" false \"float thickness\" 0.5 \"float eta\" 1.33 \"rgb albedo\" [0.4 0.5 0.6] \
+         \"float g\" -0.2 \"integer maxdepth\" 20 \"integer nsamples\" 4",
+    );
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(
+        m,
+        MaterialDesc::CoatedDiffuse {
+            reflectance: Rgb::new(0.1, 0.2, 0.3),
+            u_roughness: 0.3,
+            v_roughness: 0.1,
+            remap_roughness: false,
+            thickness: 0.5,
+            eta: 1.33,
+            albedo: Rgb::new(0.4, 0.5, 0.6),
+            g: -0.2,
+            max_depth: 20,
+            n_samples: 4,
+        }
+    );
+    // A named glass for eta, as for dielectrics; unknown parameters are warned by name.
+    let (m, w) = material("\"coateddiffuse\" \"spectrum eta\" \"glass-BK7\" \"float sigma\" 2");
+    let MaterialDesc::CoatedDiffuse { eta, .. } = m else {
+        panic!("{m:?}")
+    };
+    assert!((eta - 1.5185).abs() < 1e-3, "{eta}");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("sigma"), "{w:?}");
+}
+
+#[test]
+fn coatedconductor_defaults_and_parameters() {
+    let (m, w) = material("\"coatedconductor\"");
+    assert!(w.is_empty(), "{w:?}");
+    let MaterialDesc::CoatedConductor {
+        interface_eta,
+        conductor_eta,
+        conductor_k,
+        reflectance,
+        thickness,
+        max_depth,
+        n_samples,
+        ..
+    } = m
+    else {
+        panic!("{m:?}")
+    };
+    // Copper by default.
+    assert_eq!((interface_eta, reflectance, thickness), (1.5, None, 0.01));
+    assert!(
+        conductor_eta.r < 0.5 && conductor_k.r > 3.0,
+        "{conductor_eta:?} {conductor_k:?}"
+    );
+    assert_eq!((max_depth, n_samples), (10, 1));
+
+    let (m, w) = material(
+        "\"coatedconductor\" \"float interface.roughness\" 0.2 \"float interface.vroughness\" 0.05 \
+         \"float interface.eta\" 1.4 \"spectrum conductor.eta\" \"metal-Au-eta\" \"spectrum conductor.k\" \"metal-Au-k\" \
+         \"float conductor.uroughness\" 0.3 \"float conductor.vroughness\" 0.4 \"bool remaproughness\" false \
+         \"float thickness\" 0.2 \"rgb albedo\" [0.5 0.5 0.5] \"float g\" 0.7 \"integer maxdepth\" 5 \"integer nsamples\" 2",
+    );
+    assert!(w.is_empty(), "{w:?}");
+    let MaterialDesc::CoatedConductor {
+        interface_u_roughness,
+        interface_v_roughness,
+        interface_eta,
+        conductor_eta,
+        conductor_k,
+        conductor_u_roughness,
+        conductor_v_roughness,
+        remap_roughness,
+        thickness,
+        albedo,
+        g,
+        max_depth,
+        n_samples,
+        ..
+    } = m
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!(
+        (interface_u_roughness, interface_v_roughness, interface_eta),
+        (0.2, 0.05, 1.4)
+    );
+    // Gold: a small real part in blue... and red; more absorption in red.
+    assert!(
+        conductor_eta.r < 0.3 && conductor_k.r > conductor_k.b,
+        "{conductor_eta:?} {conductor_k:?}"
+    );
+    assert_eq!(
+        (conductor_u_roughness, conductor_v_roughness, remap_roughness),
+        (0.3, 0.4, false)
+    );
+    assert_eq!(
+        (thickness, albedo, g, max_depth, n_samples),
+        (0.2, Rgb::splat(0.5), 0.7, 5, 2)
+    );
+
+    let (m, _) = material("\"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.1]");
+    let MaterialDesc::CoatedConductor { reflectance, .. } = m else {
+        panic!("{m:?}")
+    };
+    assert_eq!(reflectance, Some(Rgb::new(0.9, 0.5, 0.1)));
+}
+
+#[test]
+fn malformed_layered_parameters_are_errors_with_locations() {
+    let cases = [
+        (
+            "\"coateddiffuse\" \"float thickness\" -1",
+            "scene.pbrt:2:26: \"thickness\" of Material \"coateddiffuse\" must be a finite number >= 0",
+        ),
+        (
+            "\"coateddiffuse\" \"float g\" 1.5",
+            "scene.pbrt:2:26: \"g\" of Material \"coateddiffuse\" must be between -1 and 1",
+        ),
+        (
+            "\"coateddiffuse\" \"integer nsamples\" 0",
+            "scene.pbrt:2:26: \"nsamples\" of Material \"coateddiffuse\" must be at least 1",
+        ),
+        (
+            "\"coateddiffuse\" \"integer maxdepth\" -3",
+            "scene.pbrt:2:26: \"maxdepth\" of Material \"coateddiffuse\" must be at least 0",
+        ),
+        (
+            "\"coateddiffuse\" \"rgb albedo\" [2 0 0]",
+            "scene.pbrt:2:26: albedo (2 0 0) of Material \"coateddiffuse\" must be between 0 and 1",
+        ),
+        (
+            "\"coateddiffuse\" \"rgb reflectance\" [0.5 -0.5 0]",
+            "scene.pbrt:2:26: \"rgb reflectance\" of Material \"coateddiffuse\" must not be negative",
+        ),
+        (
+            "\"coatedconductor\" \"float conductor.roughness\" -0.1",
+            "scene.pbrt:2:28: \"conductor.roughness\" of Material \"coatedconductor\" must not be negative",
+        ),
+        (
+            "\"coatedconductor\" \"rgb reflectance\" [0.5 0.5 0.5] \"spectrum conductor.k\" \"metal-Ag-k\"",
+            "scene.pbrt:2:28: Material \"coatedconductor\" has both \"reflectance\" and \"conductor.eta\"/\"conductor.k\"",
+        ),
+        (
+            "\"coatedconductor\" \"spectrum conductor.eta\" \"metal-Xx-eta\"",
+            "scene.pbrt:2:28: unknown named spectrum \"metal-Xx-eta\"",
+        ),
+        (
+            "\"coatedconductor\" \"float interface.eta\" -2",
+            "scene.pbrt:2:28: \"interface.eta\" of Material \"coatedconductor\" must be a finite number > 0",
+        ),
+        (
+            "\"coateddiffuse\" \"float g\" \"x\"",
+            "scene.pbrt:2:",
+        ),
+    ];
+    for (decl, expected) in cases {
+        let (_, e) = material_error(decl);
+        assert!(e.starts_with(expected), "{decl}: {e}");
+    }
+}
+
+/// Two named materials and a mix of them.
+const MIX: &str = "WorldBegin
+MakeNamedMaterial \"red\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.8 0 0]
+MakeNamedMaterial \"gloss\" \"string type\" \"coateddiffuse\"
+";
+
+#[test]
+fn mix_refers_to_named_materials_defined_before_or_after() {
+    let (d, w) = load(&format!(
+        "{MIX}MakeNamedMaterial \"both\" \"string type\" \"mix\" \"string materials\" [\"red\" \"later\"] \"float amount\" 0.25
+NamedMaterial \"both\"
+Shape \"sphere\"
+MakeNamedMaterial \"later\" \"string type\" \"interface\"
+"
+    ));
+    assert!(w.is_empty(), "{w:?}");
+    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize] else {
+        panic!("{:?}", d.materials)
+    };
+    assert_eq!(amount, 0.25);
+    assert!(matches!(
+        d.materials[materials[0] as usize],
+        MaterialDesc::Diffuse { .. }
+    ));
+    assert_eq!(d.materials[materials[1] as usize], MaterialDesc::Interface);
+
+    // Inline mixes, nested mixes, default amount.
+    let (d, _) = load(&format!(
+        "{MIX}MakeNamedMaterial \"inner\" \"string type\" \"mix\" \"string materials\" [\"red\" \"gloss\"]
+Material \"mix\" \"string materials\" [\"inner\" \"red\"] \"float amount\" 1
+Shape \"sphere\"
+"
+    ));
+    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize] else {
+        panic!("{:?}", d.materials)
+    };
+    assert_eq!(amount, 1.0);
+    assert_eq!(
+        d.materials[materials[0] as usize],
+        MaterialDesc::Mix {
+            materials: [materials[1], materials[0] - 1],
+            amount: 0.5
+        }
+    );
+}
+
+#[test]
+fn malformed_mixes_are_errors_with_locations() {
+    let cases = [
+        (
+            format!("{MIX}Material \"mix\" \"string materials\" [\"red\" \"blue\"]\nShape \"sphere\""),
+            "scene.pbrt:4:16: named material \"blue\" is not defined",
+        ),
+        (
+            format!("{MIX}Material \"mix\" \"string materials\" [\"red\"]\nShape \"sphere\""),
+            "scene.pbrt:4:16: \"string materials\" of Material \"mix\" needs exactly two material names, found 1",
+        ),
+        (format!("{MIX}Material \"mix\"\nShape \"sphere\""), "scene.pbrt:4:"),
+        (
+            format!(
+                "{MIX}MakeNamedMaterial \"a\" \"string type\" \"mix\" \"string materials\" [\"red\" \"b\"]
+MakeNamedMaterial \"b\" \"string type\" \"mix\" \"string materials\" [\"a\" \"gloss\"]
+NamedMaterial \"a\"
+Shape \"sphere\""
+            ),
+            "scene.pbrt:5:43: mix material \"a\" contains itself (through a -> b)",
+        ),
+    ];
+    for (src, expected) in &cases {
+        let (_, e) = error(src);
+        assert!(e.starts_with(expected), "{src}:\n{e}");
+    }
+    // A mix that nothing uses is not resolved, as in pbrt (no error).
+    let (_, w) = load(&format!(
+        "{MIX}MakeNamedMaterial \"unused\" \"string type\" \"mix\" \"string materials\" [\"red\" \"nothing\"]\n"
+    ));
+    assert!(w.is_empty(), "{w:?}");
+}
+
+#[test]
+fn interface_and_its_pbrt_spellings_have_no_surface() {
+    for kind in ["interface", "none", ""] {
+        let (m, w) = material(&format!("\"{kind}\""));
+        assert_eq!(m, MaterialDesc::Interface, "{kind}");
+        assert!(w.is_empty(), "{w:?}");
+    }
+}
