@@ -12,7 +12,7 @@
 //! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
 //! `Material`/`MakeNamedMaterial "diffuse"` with `rgb reflectance`, `AreaLightSource
 //! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
-//! planar `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
+//! `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
 //! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, textures, lights,
 //! shapes, media and motion blur are errors naming the feature.
 //!
