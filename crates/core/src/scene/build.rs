@@ -261,7 +261,7 @@ fn check_mesh(
     normals: Option<&[Vec3]>,
     uvs: Option<&[Vec2]>,
 ) -> Result<(), BuildError> {
-    if indices.len() % per_face != 0 {
+    if !indices.len().is_multiple_of(per_face) {
         return Err(invalid(
             what,
             format!("{} indices is not a multiple of {per_face}", indices.len()),

@@ -44,7 +44,7 @@ const GAUSS_NODES: [f64; 8] = [
     0.101_666_761_293_186_63,
     0.237_233_795_041_835_5,
     0.408_282_678_752_175_1,
-    0.591_717_321_247_824_9,
+    0.591_717_321_247_825,
     0.762_766_204_958_164_5,
     0.898_333_238_706_813_4,
     0.980_144_928_248_768_1,
@@ -53,8 +53,8 @@ const GAUSS_WEIGHTS: [f64; 8] = [
     0.050_614_268_145_188_13,
     0.111_190_517_226_687_24,
     0.156_853_322_938_943_64,
-    0.181_341_891_689_181_0,
-    0.181_341_891_689_181_0,
+    0.181_341_891_689_181,
+    0.181_341_891_689_181,
     0.156_853_322_938_943_64,
     0.111_190_517_226_687_24,
     0.050_614_268_145_188_13,
@@ -151,7 +151,7 @@ fn intersect_corners(o: DVec3, d: DVec3, t_max: f64, c: &Corners) -> Option<(f64
         let n = n.cross(pa);
         let t = n.dot(pb) / det;
         let v = n.dot(d) / det;
-        if range.contains(&v) && t > min_t && t < t_max && best.map_or(true, |(tb, _)| t < tb) {
+        if range.contains(&v) && t > min_t && t < t_max && best.is_none_or(|(tb, _)| t < tb) {
             best = Some((t, DVec2::new(u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))));
         }
     }
@@ -214,7 +214,7 @@ impl BilinearPatch {
         let (t, uv) = intersect_corners(ray.o.as_dvec3(), ray.d.as_dvec3(), f64::from(t_max), &c)?;
         let t = t as f32;
         // Rounding to f32 must not push the hit out of range.
-        (t > 0.0 && t < t_max).then(|| ShapeHit {
+        (t > 0.0 && t < t_max).then_some(ShapeHit {
             t,
             data: [uv.x as f32, uv.y as f32, 0.0],
         })
