@@ -777,6 +777,61 @@ mod tests {
         );
     }
 
+    /// A patch with a collapsed edge (p11 = p10) is the triangle p00 p10 p01: same hits,
+    /// same area, finite normals, and samples with a valid density.
+    #[test]
+    fn collapsed_edge_patch_is_its_triangle() {
+        let (a, b, c) = (
+            Vec3::new(0.1, 0.2, 1.0),
+            Vec3::new(1.3, 0.1, 1.4),
+            Vec3::new(0.2, 1.1, 0.8),
+        );
+        let patch = patch_of([a, b, c, b]);
+        let mesh = Arc::new(TriangleMesh {
+            positions: vec![a, b, c],
+            indices: vec![0, 1, 2],
+            ..Default::default()
+        });
+        let tri = Triangle::new(mesh, 0);
+        assert!(
+            (patch.area() - tri.area()).abs() < 1e-3 * tri.area(),
+            "{} {}",
+            patch.area(),
+            tri.area()
+        );
+        let mut rng = Pcg32::new(2, 6);
+        let mut hits = 0;
+        for _ in 0..5_000 {
+            let o = Vec3::new(rng.next_f32(), rng.next_f32(), -1.0);
+            let target = Vec3::new(1.6 * rng.next_f32() - 0.1, 1.4 * rng.next_f32() - 0.1, 0.0);
+            let ray = Ray::new(o, target - o + Vec3::Z * (1.0 + target.x * 0.1));
+            let (got, want) = (patch.intersect(&ray, f32::INFINITY), tri.intersect(&ray, f32::INFINITY));
+            if let (Some(g), Some(w)) = (got, want) {
+                assert!((g.t - w.t).abs() < 1e-4, "{} {}", g.t, w.t);
+                let si = patch.interaction(&ray, &g);
+                assert!(si.n().is_finite() && (si.n().length() - 1.0).abs() < 1e-4);
+                hits += 1;
+            } else if got.is_some() != want.is_some() {
+                // Only along the outline (within rounding).
+                let p = ray.at(got.or(want).unwrap().t);
+                let d = [(a, b), (b, c), (c, a)]
+                    .iter()
+                    .map(|&(x, y)| {
+                        let e = y - x;
+                        let s = ((p - x).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+                        (p - (x + s * e)).length()
+                    })
+                    .fold(f32::INFINITY, f32::min);
+                assert!(d < 1e-4, "disagreement at {p}, {d} from the outline");
+            }
+        }
+        assert!(hits > 500, "{hits}");
+        for _ in 0..1000 {
+            let s = patch.sample_area(Vec2::new(rng.next_f32(), rng.next_f32()));
+            assert!(s.pdf_area.is_finite() && s.pdf_area >= 0.0 && s.intr.p.is_finite());
+        }
+    }
+
     /// Normals: `dp/du x dp/dv`, flipped on request, or on the side of interpolated shading
     /// normals; texture coordinates interpolate bilinearly.
     #[test]
