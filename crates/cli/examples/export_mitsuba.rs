@@ -96,6 +96,7 @@ fn main() -> Result<()> {
                 )
             }
             GeometryDesc::Disk { .. } => bail!("shape {i}: disks are not exported yet"),
+            GeometryDesc::BilinearMesh(_) => bail!("shape {i}: bilinear patches are not exported yet"),
         };
         shapes.push(format!(r#"{{{geometry},"material":{material},"emitter":{emitter}}}"#));
     }

@@ -5,7 +5,9 @@
 //!   `u v` (or `s t`, `texture_u texture_v`, `texture_s texture_t`);
 //! * element `face`: a list `vertex_indices` (or `vertex_index`); triangles are kept, quads
 //!   are split into the triangles (0, 1, 2) and (0, 2, 3), other polygons are skipped and
-//!   counted (pbrt skips them too);
+//!   counted (pbrt skips them too). pbrt-v4 instead makes each quad a bilinear patch
+//!   (p00 p10 p01 p11 = 0 1 3 2): the same surface for planar quads, whose triangles are
+//!   exactly our two; a non-planar quad is curved there and two flat triangles here;
 //! * any other element is read and ignored.
 //!
 //! Vertex data must be finite and indices in range; anything else is a [`PlyError`].

@@ -129,6 +129,32 @@ fn planar_bilinear_patches_split_into_triangles() {
     assert_eq!((m.positions.len(), m.indices.clone()), (4, vec![0, 1, 3, 0, 3, 2]));
 }
 
+/// A mesh with a curved patch stays a bilinear mesh, moved to world space (normals by the
+/// inverse transpose, negated by `ReverseOrientation`), with its uvs.
+#[test]
+fn curved_bilinear_patches_load_as_patches() {
+    let s = load(
+        "WorldBegin\nTranslate 0 0 2\nReverseOrientation\nAreaLightSource \"diffuse\" \"rgb L\" [1 2 3]\n\
+         Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1  2 0 0  2 1 0] \
+         \"integer indices\" [0 1 2 3  1 4 3 5] \"normal N\" [0 0 1  0 0 1  0 0 1  0 0 1  0 0 2  0 0 1] \
+         \"point2 uv\" [0 0  1 0  0 1  1 1  2 0  2 1]",
+    );
+    let shape = &s.description.shapes[0];
+    let GeometryDesc::BilinearMesh(m) = &shape.geometry else {
+        panic!("expected a bilinear mesh, found {:?}", shape.geometry);
+    };
+    assert_eq!(m.indices, vec![0, 1, 2, 3, 1, 4, 3, 5]);
+    assert_eq!(m.positions[3], Vec3::new(1.0, 1.0, 3.0));
+    let normals = m.normals.as_ref().unwrap();
+    assert!(normals.iter().all(|n| close(*n, -Vec3::Z)), "{normals:?}");
+    assert_eq!(m.uvs.as_ref().unwrap()[4], glam::Vec2::new(2.0, 0.0));
+    assert!(shape.flip_normals);
+    assert!(shape.area_light.is_some());
+    // It builds, and the area light has one light per patch.
+    let scene = mcrender_core::scene::Scene::build(&s.description).unwrap();
+    assert_eq!(scene.lights.len(), 2);
+}
+
 /// Shapes inside `ObjectBegin`/`ObjectEnd` keep the CTM of their definition and go to the
 /// object; each `ObjectInstance` adds a placement with the CTM at that point. The
 /// definition's attribute scope closes with `ObjectEnd`.

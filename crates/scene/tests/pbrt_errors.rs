@@ -92,15 +92,7 @@ fn malformed_disks() {
 }
 
 #[test]
-fn curved_and_malformed_bilinear_patches() {
-    assert_eq!(
-        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1]"),
-        "scene.pbrt:2:1: non-planar bilinear patches are not supported yet (patch 0 is curved)"
-    );
-    assert_eq!(
-        kind("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1]"),
-        SceneErrorKind::Unsupported
-    );
+fn malformed_bilinear_patches() {
     assert_eq!(
         error(
             "WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0] \"integer indices\" [0 1 2]"
@@ -110,6 +102,25 @@ fn curved_and_malformed_bilinear_patches() {
     assert_eq!(
         error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0]"),
         "scene.pbrt:2:1: Shape \"bilinearmesh\" needs \"integer indices\" (P has 3 points, not 4)"
+    );
+    // The same checks hold for curved patches.
+    assert_eq!(
+        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] \"integer indices\" [0 1 2 4]"),
+        "scene.pbrt:2:62: vertex index 4 is out of range (P has 4 points)"
+    );
+    assert_eq!(
+        error(
+            "WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] \"normal N\" [0 0 1  0 0 1  0 0 1]"
+        ),
+        "scene.pbrt:2:62: \"normal N\" has 3 values but P has 4 points"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] \"point2 uv\" [0 0 1 0]"),
+        "scene.pbrt:2:62: \"point2 uv\" has 2 values but P has 4 points"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1]"),
+        "scene.pbrt:2:22: parameter \"point3 P\" needs a multiple of 3 values, found 11"
     );
 }
 

@@ -18,7 +18,8 @@ use crate::light::{
     UniformInfiniteLight,
 };
 use crate::material::Material;
-use crate::shape::{Disk, Shape, Sphere, Triangle, TriangleMesh};
+use crate::math::{Vec2, Vec3};
+use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, Triangle, TriangleMesh};
 
 /// Largest image side accepted.
 pub const MAX_RESOLUTION: u32 = 32_768;
@@ -258,42 +259,22 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
             }
         }
         match &s.geometry {
-            GeometryDesc::TriangleMesh(m) => {
-                let what = format!("triangle mesh (shape {i})");
-                if m.indices.len() % 3 != 0 {
-                    return Err(invalid(
-                        what,
-                        format!("{} indices is not a multiple of 3", m.indices.len()),
-                    ));
-                }
-                if let Some(bad) = m.indices.iter().find(|&&k| k as usize >= m.positions.len()) {
-                    return Err(invalid(
-                        what,
-                        format!("vertex index {bad} out of range ({} vertices)", m.positions.len()),
-                    ));
-                }
-                check_finite(
-                    &what,
-                    &m.positions.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>(),
-                )?;
-                if let Some(n) = &m.normals {
-                    if n.len() != m.positions.len() {
-                        return Err(invalid(
-                            what,
-                            format!("{} normals for {} vertices", n.len(), m.positions.len()),
-                        ));
-                    }
-                    check_finite(&what, &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
-                }
-                if let Some(uv) = &m.uvs {
-                    if uv.len() != m.positions.len() {
-                        return Err(invalid(
-                            what,
-                            format!("{} uvs for {} vertices", uv.len(), m.positions.len()),
-                        ));
-                    }
-                }
-            }
+            GeometryDesc::TriangleMesh(m) => check_mesh(
+                &format!("triangle mesh (shape {i})"),
+                3,
+                &m.positions,
+                &m.indices,
+                m.normals.as_deref(),
+                m.uvs.as_deref(),
+            )?,
+            GeometryDesc::BilinearMesh(m) => check_mesh(
+                &format!("bilinear mesh (shape {i})"),
+                4,
+                &m.positions,
+                &m.indices,
+                m.normals.as_deref(),
+                m.uvs.as_deref(),
+            )?,
             GeometryDesc::Sphere {
                 radius,
                 world_from_object,
@@ -336,7 +317,49 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
     Ok(())
 }
 
-/// The shapes a description stands for (one per triangle of a mesh).
+/// Check the arrays of a mesh with `per_face` vertices per face.
+fn check_mesh(
+    what: &str,
+    per_face: usize,
+    positions: &[Vec3],
+    indices: &[u32],
+    normals: Option<&[Vec3]>,
+    uvs: Option<&[Vec2]>,
+) -> Result<(), BuildError> {
+    if !indices.len().is_multiple_of(per_face) {
+        return Err(invalid(
+            what,
+            format!("{} indices is not a multiple of {per_face}", indices.len()),
+        ));
+    }
+    if let Some(bad) = indices.iter().find(|&&k| k as usize >= positions.len()) {
+        return Err(invalid(
+            what,
+            format!("vertex index {bad} out of range ({} vertices)", positions.len()),
+        ));
+    }
+    check_finite(what, &positions.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
+    if let Some(n) = normals {
+        if n.len() != positions.len() {
+            return Err(invalid(
+                what,
+                format!("{} normals for {} vertices", n.len(), positions.len()),
+            ));
+        }
+        check_finite(what, &n.iter().flat_map(|p| p.to_array()).collect::<Vec<_>>())?;
+    }
+    if let Some(uv) = uvs {
+        if uv.len() != positions.len() {
+            return Err(invalid(
+                what,
+                format!("{} uvs for {} vertices", uv.len(), positions.len()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The shapes a description stands for (one per triangle or patch of a mesh).
 fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
     match &s.geometry {
         GeometryDesc::TriangleMesh(m) => {
@@ -353,6 +376,22 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
             (0..mesh.triangle_count() as u32)
                 .map(|index| Shape::Triangle(Triangle::new(mesh.clone(), index)))
                 .filter(|t| t.area() > 0.0)
+                .collect()
+        }
+        GeometryDesc::BilinearMesh(m) => {
+            let mesh = Arc::new(BilinearMesh {
+                positions: m.positions.clone(),
+                indices: m.indices.clone(),
+                normals: m
+                    .normals
+                    .as_ref()
+                    .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
+                uvs: m.uvs.clone(),
+                flip_normals: s.flip_normals,
+            });
+            (0..mesh.patch_count() as u32)
+                .map(|index| Shape::Bilinear(BilinearPatch::new(mesh.clone(), index)))
+                .filter(|p| p.area() > 0.0)
                 .collect()
         }
         GeometryDesc::Sphere {

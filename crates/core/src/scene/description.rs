@@ -439,6 +439,10 @@ pub struct ShapeDesc {
 pub enum GeometryDesc {
     /// A triangle mesh, already transformed to world space.
     TriangleMesh(TriangleMeshDesc),
+    /// A mesh of bilinear patches (pbrt-v4 `bilinearmesh`), already in world space. The
+    /// geometric normal is `dp/du x dp/dv`, flipped by [`ShapeDesc::flip_normals`] unless
+    /// shading normals are given.
+    BilinearMesh(BilinearMeshDesc),
     /// A full sphere of `radius` around the origin of its object space.
     Sphere {
         /// Radius.
@@ -472,6 +476,22 @@ pub struct TriangleMeshDesc {
     /// Optional per-vertex shading normals (world space, same length as `positions`).
     pub normals: Option<Vec<Vec3>>,
     /// Optional per-vertex texture coordinates.
+    pub uvs: Option<Vec<Vec2>>,
+}
+
+/// A bilinear patch mesh in world space: each patch is
+/// `p(u, v) = lerp(u, lerp(v, p00, p01), lerp(v, p10, p11))` for `(u, v)` in `[0, 1]^2`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BilinearMeshDesc {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Four vertex indices per patch, in pbrt-v4's order `p00, p10, p01, p11`.
+    pub indices: Vec<u32>,
+    /// Optional per-vertex shading normals (world space, same length as `positions`),
+    /// interpolated bilinearly.
+    pub normals: Option<Vec<Vec3>>,
+    /// Optional per-vertex texture coordinates, interpolated bilinearly; without them a
+    /// patch's texture coordinates are its `(u, v)`.
     pub uvs: Option<Vec<Vec2>>,
 }
 

@@ -1,15 +1,17 @@
 //! Layer 2: shapes. Ray intersection with error-bounded hit points, surface interactions,
 //! and uniform-area sampling for area lights.
 
+mod bilinear;
 mod disk;
 mod interaction;
 mod mesh;
 mod sphere;
 mod triangle;
 
+pub use bilinear::BilinearPatch;
 pub use disk::Disk;
 pub use interaction::{Interaction, SurfaceInteraction};
-pub use mesh::TriangleMesh;
+pub use mesh::{BilinearMesh, TriangleMesh};
 pub use sphere::Sphere;
 pub use triangle::Triangle;
 
@@ -30,7 +32,8 @@ pub struct ShapeSample {
 pub struct ShapeHit {
     /// Ray parameter of the hit.
     pub t: f32,
-    /// Barycentrics (triangles) or the object-space hit point (spheres, disks).
+    /// Barycentrics (triangles), the patch's `(u, v, 0)` (bilinear patches) or the
+    /// object-space hit point (spheres, disks).
     pub data: [f32; 3],
 }
 
@@ -43,6 +46,8 @@ pub enum Shape {
     Sphere(Sphere),
     /// A disk, annulus or sector.
     Disk(Disk),
+    /// One bilinear patch of a mesh.
+    Bilinear(BilinearPatch),
 }
 
 /// Forward a method call to the variant.
@@ -52,6 +57,7 @@ macro_rules! dispatch {
             Shape::Triangle($s) => $e,
             Shape::Sphere($s) => $e,
             Shape::Disk($s) => $e,
+            Shape::Bilinear($s) => $e,
         }
     };
 }
@@ -81,8 +87,9 @@ impl Shape {
         dispatch!(self, s => s.area())
     }
 
-    /// A point uniformly distributed by area (exactly so for triangles and uniformly scaled
-    /// spheres; the returned pdf is always the true density).
+    /// A point uniformly distributed by area (exactly so for triangles, disks, uniformly
+    /// scaled spheres and parallelogram patches; the returned pdf is always the true
+    /// density).
     #[must_use]
     pub fn sample_area(&self, u: Vec2) -> ShapeSample {
         dispatch!(self, s => s.sample_area(u))

@@ -13,7 +13,7 @@
 //! `Material`/`MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix,
 //! checkerboard, imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource
 //! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
-//! planar `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
+//! `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
 //! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, texture classes, lights,
 //! shapes, media and motion blur are errors naming the feature.
 //!

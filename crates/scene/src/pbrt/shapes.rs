@@ -1,11 +1,12 @@
-//! Shapes: `trianglemesh`, `plymesh`, `sphere`, `disk` and (planar) `bilinearmesh`. Meshes are moved to world space
+//! Shapes: `trianglemesh`, `plymesh`, `sphere`, `disk` and `bilinearmesh` (all-planar
+//! meshes as triangle pairs, others as bilinear patches). Meshes are moved to world space
 //! here (points by the CTM, normals by its inverse transpose, negated under
 //! `ReverseOrientation` as pbrt does, then normalised); spheres and disks keep their
 //! transform.
 
 use glam::{Vec2, Vec3};
 use mcrender_core::math::Transform;
-use mcrender_core::scene::{GeometryDesc, ShapeDesc, TriangleMeshDesc};
+use mcrender_core::scene::{BilinearMeshDesc, GeometryDesc, ShapeDesc, TriangleMeshDesc};
 
 use super::builder::SceneBuilder;
 use super::params::{ParamSet, ParamType};
@@ -44,7 +45,11 @@ impl SceneBuilder {
             }
             "bilinearmesh" => {
                 let mesh = self.mesh_params(kind, 4, params, loc)?;
-                to_world(split_planar_patches(mesh, loc)?, &world_from_object, reverse, loc)?
+                if all_planar(&mesh) {
+                    to_world(split_planar_patches(mesh), &world_from_object, reverse, loc)?
+                } else {
+                    bilinear_to_world(mesh, &world_from_object, reverse, loc)?
+                }
             }
             "plymesh" => {
                 let Some(mesh) = self.ply_mesh(params, loc)? else {
@@ -290,14 +295,11 @@ fn disk(params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc,
 /// patch's edges from one corner, against the cube of its longest edge or diagonal.
 const PLANAR_TOLERANCE: f32 = 1e-4;
 
-/// Split each bilinear patch `p00, p10, p01, p11` (pbrt-v4's vertex order) into the triangles
-/// `p00 p10 p11` and `p00 p11 p01`, whose normals are pbrt-v4's `dpdu x dpdv`. Only planar
-/// patches can be split exactly; curved ones are an error until real bilinear patch
-/// intersection exists. Without `uv`, each patch gets its own four vertices with pbrt-v4's
-/// default (u, v) at the corners (exact for parallelograms, affine per triangle otherwise).
-fn split_planar_patches(mesh: ObjectMesh, loc: &Location) -> Result<ObjectMesh, SceneError> {
+/// Whether every patch `p00, p10, p01, p11` of a bilinear mesh is planar (up to
+/// [`PLANAR_TOLERANCE`]).
+fn all_planar(mesh: &ObjectMesh) -> bool {
     let p = &mesh.positions;
-    for (k, q) in mesh.indices.chunks_exact(4).enumerate() {
+    mesh.indices.chunks_exact(4).all(|q| {
         let [p00, p10, p01, p11] = [0, 1, 2, 3].map(|j| p[q[j] as usize]);
         let (e1, e2, e3) = (p10 - p00, p01 - p00, p11 - p00);
         let size = [e1, e2, e3, p11 - p10, p11 - p01, p10 - p01]
@@ -305,17 +307,22 @@ fn split_planar_patches(mesh: ObjectMesh, loc: &Location) -> Result<ObjectMesh, 
             .map(|e| e.length())
             .fold(0.0f32, f32::max);
         let volume = e1.cross(e2).dot(e3).abs();
-        if volume > PLANAR_TOLERANCE * size * size * size {
-            return Err(SceneError::unsupported(
-                loc,
-                format!("non-planar bilinear patches are not supported yet (patch {k} is curved)"),
-            ));
-        }
-    }
+        volume <= PLANAR_TOLERANCE * size * size * size
+    })
+}
+
+/// Split each planar bilinear patch `p00, p10, p01, p11` (pbrt-v4's vertex order) into the
+/// triangles `p00 p10 p11` and `p00 p11 p01`, whose normals are pbrt-v4's `dpdu x dpdv`.
+/// Triangle pairs trace faster than patches (see docs/pbrt-support.md) and keep the
+/// renders of planar-patch scenes as they were. Without `uv`, each patch gets its own four
+/// vertices with pbrt-v4's default (u, v) at the corners (exact for parallelograms, affine
+/// per triangle otherwise).
+fn split_planar_patches(mesh: ObjectMesh) -> ObjectMesh {
+    let p = &mesh.positions;
     let tri = |q: &[u32]| [q[0], q[1], q[3], q[0], q[3], q[2]];
     if mesh.uvs.is_some() {
         let indices = mesh.indices.chunks_exact(4).flat_map(tri).collect();
-        return Ok(ObjectMesh { indices, ..mesh });
+        return ObjectMesh { indices, ..mesh };
     }
     let mut out = ObjectMesh {
         positions: Vec::with_capacity(mesh.indices.len()),
@@ -337,7 +344,7 @@ fn split_planar_patches(mesh: ObjectMesh, loc: &Location) -> Result<ObjectMesh, 
         }
         out.indices.extend(tri(&[base, base + 1, base + 2, base + 3]));
     }
-    Ok(out)
+    out
 }
 
 fn check_count(found: usize, expected: usize, decl: &str, loc: &Location) -> Result<(), SceneError> {
@@ -351,13 +358,45 @@ fn check_count(found: usize, expected: usize, decl: &str, loc: &Location) -> Res
     }
 }
 
-/// Move an object-space mesh to world space.
+/// Move an object-space bilinear mesh (with a curved patch) to world space.
+fn bilinear_to_world(
+    mesh: ObjectMesh,
+    world_from_object: &Transform,
+    reverse_orientation: bool,
+    loc: &Location,
+) -> Result<GeometryDesc, SceneError> {
+    let m = world_arrays(mesh, world_from_object, reverse_orientation, loc)?;
+    Ok(GeometryDesc::BilinearMesh(BilinearMeshDesc {
+        positions: m.positions,
+        indices: m.indices,
+        normals: m.normals,
+        uvs: m.uvs,
+    }))
+}
+
+/// Move an object-space triangle mesh to world space.
 fn to_world(
     mesh: ObjectMesh,
     world_from_object: &Transform,
     reverse_orientation: bool,
     loc: &Location,
 ) -> Result<GeometryDesc, SceneError> {
+    let m = world_arrays(mesh, world_from_object, reverse_orientation, loc)?;
+    Ok(GeometryDesc::TriangleMesh(TriangleMeshDesc {
+        positions: m.positions,
+        indices: m.indices,
+        normals: m.normals,
+        uvs: m.uvs,
+    }))
+}
+
+/// The mesh's positions and normals in world space.
+fn world_arrays(
+    mesh: ObjectMesh,
+    world_from_object: &Transform,
+    reverse_orientation: bool,
+    loc: &Location,
+) -> Result<ObjectMesh, SceneError> {
     let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| world_from_object.point(p)).collect();
     if positions.iter().any(|p| !p.is_finite()) {
         return Err(SceneError::invalid(
@@ -373,10 +412,10 @@ fn to_world(
             .map(|&n| (sign * world_from_object.normal(n)).normalize_or_zero())
             .collect()
     });
-    Ok(GeometryDesc::TriangleMesh(TriangleMeshDesc {
+    Ok(ObjectMesh {
         positions,
         indices: mesh.indices,
         normals,
         uvs: mesh.uvs,
-    }))
+    })
 }

@@ -2,6 +2,7 @@
 //! triplet `sample_x` / `x_pdf` / `invert_x` (the inverse maps a point back to the `u`
 //! that produces it). Directional pdfs are per unit solid angle, planar ones per unit area.
 
+mod bilinear;
 mod cone;
 mod disk;
 mod equal_area;
@@ -10,6 +11,7 @@ mod sphere;
 mod tent;
 mod triangle;
 
+pub use bilinear::{bilinear_pdf, invert_bilinear, invert_linear, linear_pdf, sample_bilinear, sample_linear};
 pub use cone::{invert_uniform_cone, sample_uniform_cone, uniform_cone_pdf};
 pub use disk::{
     invert_uniform_disk_concentric, invert_uniform_disk_polar, sample_uniform_disk_concentric,
