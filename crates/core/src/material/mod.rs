@@ -368,7 +368,7 @@ impl Material {
     }
 
     /// The BSDF at a hit, in the shading frame of `si.ns` with `si.dpdu` as first tangent,
-    /// with the textures evaluated at `ctx`; `None` for [`Self::Interface`] and for
+    /// guarded by the geometric normal `si.n()`, with the textures evaluated at `ctx`; `None` for [`Self::Interface`] and for
     /// [`Self::Mix`] (resolve it with [`Self::mix_choice`] first).
     #[must_use]
     pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<Bsdf> {
@@ -488,7 +488,7 @@ impl Material {
             }
             Self::Mix { .. } | Self::Interface => return None,
         };
-        Some(Bsdf::new(si.ns, si.dpdu, bxdf))
+        Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
     }
 }
 
