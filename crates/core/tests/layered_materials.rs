@@ -71,14 +71,14 @@ fn thin_coated_lambertian_under_a_sky_matches_its_closed_form_with_every_techniq
     set_receiver_material(
         &mut d,
         MaterialDesc::CoatedDiffuse {
-            reflectance: Rgb::splat(r),
-            u_roughness: 0.0,
-            v_roughness: 0.0,
+            reflectance: Rgb::splat(r).into(),
+            u_roughness: 0.0.into(),
+            v_roughness: 0.0.into(),
             remap_roughness: false,
-            thickness: 1e-5,
+            thickness: 1e-5.into(),
             eta: 1.5,
-            albedo: Rgb::BLACK,
-            g: 0.0,
+            albedo: Rgb::BLACK.into(),
+            g: 0.0.into(),
             max_depth: 200,
             n_samples: 1,
         },
@@ -110,11 +110,11 @@ fn mixes_reflect_the_mixture_of_their_materials() {
     });
     d.materials.push(MaterialDesc::Mix {
         materials: [n - 1, n],
-        amount: 0.25,
+        amount: 0.25.into(),
     });
     d.materials.push(MaterialDesc::Mix {
         materials: [n + 1, 0],
-        amount: 0.5,
+        amount: 0.5.into(),
     });
     let receiver = d.shapes.len() - 1;
     for (material, albedo) in [
@@ -128,7 +128,7 @@ fn mixes_reflect_the_mixture_of_their_materials() {
     for (amount, albedo) in [(0.0, 0.8), (1.0, 0.2), (-3.0, 0.8), (7.0, 0.2)] {
         d.materials[n as usize + 1] = MaterialDesc::Mix {
             materials: [n - 1, n],
-            amount,
+            amount: amount.into(),
         };
         d.shapes[receiver].material = n + 1;
         assert_close(&d, sky * albedo, &format!("amount {amount}"));
@@ -136,7 +136,7 @@ fn mixes_reflect_the_mixture_of_their_materials() {
     // A mix that contains itself is refused.
     d.materials[n as usize + 1] = MaterialDesc::Mix {
         materials: [n - 1, n + 2],
-        amount: 0.5,
+        amount: 0.5.into(),
     };
     let e = Scene::build(&d).unwrap_err().to_string();
     assert!(e.contains("contains itself"), "{e}");
@@ -177,30 +177,30 @@ fn interface_surfaces_change_nothing() {
 #[test]
 fn invalid_layered_and_mix_parameters_are_refused() {
     let coated = MaterialDesc::CoatedDiffuse {
-        reflectance: Rgb::splat(0.5),
-        u_roughness: 0.0,
-        v_roughness: 0.0,
+        reflectance: Rgb::splat(0.5).into(),
+        u_roughness: 0.0.into(),
+        v_roughness: 0.0.into(),
         remap_roughness: true,
-        thickness: 0.01,
+        thickness: 0.01.into(),
         eta: 1.5,
-        albedo: Rgb::BLACK,
-        g: 0.0,
+        albedo: Rgb::BLACK.into(),
+        g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
     };
     let conductor = MaterialDesc::CoatedConductor {
-        interface_u_roughness: 0.0,
-        interface_v_roughness: 0.0,
+        interface_u_roughness: 0.0.into(),
+        interface_v_roughness: 0.0.into(),
         interface_eta: 1.5,
-        conductor_eta: Rgb::splat(0.2),
-        conductor_k: Rgb::splat(3.0),
+        conductor_eta: Rgb::splat(0.2).into(),
+        conductor_k: Rgb::splat(3.0).into(),
         reflectance: None,
-        conductor_u_roughness: 0.1,
-        conductor_v_roughness: 0.1,
+        conductor_u_roughness: 0.1.into(),
+        conductor_v_roughness: 0.1.into(),
         remap_roughness: true,
-        thickness: 0.01,
-        albedo: Rgb::BLACK,
-        g: 0.0,
+        thickness: 0.01.into(),
+        albedo: Rgb::BLACK.into(),
+        g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
     };
@@ -229,10 +229,10 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         } = &mut m
         {
             match field {
-                "thickness" => *thickness = v,
-                "g" => *g = v,
+                "thickness" => *thickness = v.into(),
+                "g" => *g = v.into(),
                 "eta" => *eta = v,
-                _ => *u_roughness = v,
+                _ => *u_roughness = v.into(),
             }
         }
         bad.push((format!("coated diffuse {field} {v}"), m));
@@ -251,8 +251,8 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         } = &mut m
         {
             match field {
-                "albedo" => *albedo = Rgb::splat(v),
-                "conductor k" => *conductor_k = Rgb::splat(v),
+                "albedo" => *albedo = Rgb::splat(v).into(),
+                "conductor k" => *conductor_k = Rgb::splat(v).into(),
                 _ => *interface_eta = v,
             }
         }
@@ -262,14 +262,14 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         "mix amount NaN".into(),
         MaterialDesc::Mix {
             materials: [0, 0],
-            amount: f32::NAN,
+            amount: f32::NAN.into(),
         },
     ));
     bad.push((
         "mix of a missing material".into(),
         MaterialDesc::Mix {
             materials: [0, 99],
-            amount: 0.5,
+            amount: 0.5.into(),
         },
     ));
     for (label, m) in bad {

@@ -36,14 +36,14 @@ fn coateddiffuse_defaults_are_pbrts() {
     assert_eq!(
         m,
         MaterialDesc::CoatedDiffuse {
-            reflectance: Rgb::splat(0.5),
-            u_roughness: 0.0,
-            v_roughness: 0.0,
+            reflectance: Rgb::splat(0.5).into(),
+            u_roughness: 0.0.into(),
+            v_roughness: 0.0.into(),
             remap_roughness: true,
-            thickness: 0.01,
+            thickness: 0.01.into(),
             eta: 1.5,
-            albedo: Rgb::BLACK,
-            g: 0.0,
+            albedo: Rgb::BLACK.into(),
+            g: 0.0.into(),
             max_depth: 10,
             n_samples: 1,
         }
@@ -61,14 +61,14 @@ fn coateddiffuse_reads_every_parameter() {
     assert_eq!(
         m,
         MaterialDesc::CoatedDiffuse {
-            reflectance: Rgb::new(0.1, 0.2, 0.3),
-            u_roughness: 0.3,
-            v_roughness: 0.1,
+            reflectance: Rgb::new(0.1, 0.2, 0.3).into(),
+            u_roughness: 0.3.into(),
+            v_roughness: 0.1.into(),
             remap_roughness: false,
-            thickness: 0.5,
+            thickness: 0.5.into(),
             eta: 1.33,
-            albedo: Rgb::new(0.4, 0.5, 0.6),
-            g: -0.2,
+            albedo: Rgb::new(0.4, 0.5, 0.6).into(),
+            g: (-0.2).into(),
             max_depth: 20,
             n_samples: 4,
         }
@@ -101,7 +101,11 @@ fn coatedconductor_defaults_and_parameters() {
         panic!("{m:?}")
     };
     // Copper by default.
-    assert_eq!((interface_eta, reflectance, thickness), (1.5, None, 0.01));
+    assert_eq!(
+        (interface_eta, reflectance, thickness.constant()),
+        (1.5, None, Some(0.01))
+    );
+    let (conductor_eta, conductor_k) = (conductor_eta.constant().unwrap(), conductor_k.constant().unwrap());
     assert!(
         conductor_eta.r < 0.5 && conductor_k.r > 3.0,
         "{conductor_eta:?} {conductor_k:?}"
@@ -135,28 +139,43 @@ fn coatedconductor_defaults_and_parameters() {
         panic!("{m:?}")
     };
     assert_eq!(
-        (interface_u_roughness, interface_v_roughness, interface_eta),
-        (0.2, 0.05, 1.4)
+        (
+            interface_u_roughness.constant(),
+            interface_v_roughness.constant(),
+            interface_eta
+        ),
+        (Some(0.2), Some(0.05), 1.4)
     );
+    let (conductor_eta, conductor_k) = (conductor_eta.constant().unwrap(), conductor_k.constant().unwrap());
     // Gold: a small real part in blue... and red; more absorption in red.
     assert!(
         conductor_eta.r < 0.3 && conductor_k.r > conductor_k.b,
         "{conductor_eta:?} {conductor_k:?}"
     );
     assert_eq!(
-        (conductor_u_roughness, conductor_v_roughness, remap_roughness),
-        (0.3, 0.4, false)
+        (
+            conductor_u_roughness.constant(),
+            conductor_v_roughness.constant(),
+            remap_roughness
+        ),
+        (Some(0.3), Some(0.4), false)
     );
     assert_eq!(
-        (thickness, albedo, g, max_depth, n_samples),
-        (0.2, Rgb::splat(0.5), 0.7, 5, 2)
+        (
+            thickness.constant(),
+            albedo.constant(),
+            g.constant(),
+            max_depth,
+            n_samples
+        ),
+        (Some(0.2), Some(Rgb::splat(0.5)), Some(0.7), 5, 2)
     );
 
     let (m, _) = material("\"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.1]");
     let MaterialDesc::CoatedConductor { reflectance, .. } = m else {
         panic!("{m:?}")
     };
-    assert_eq!(reflectance, Some(Rgb::new(0.9, 0.5, 0.1)));
+    assert_eq!(reflectance, Some(Rgb::new(0.9, 0.5, 0.1).into()));
 }
 
 #[test]
@@ -229,10 +248,10 @@ MakeNamedMaterial \"later\" \"string type\" \"interface\"
 "
     ));
     assert!(w.is_empty(), "{w:?}");
-    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize] else {
+    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize].clone() else {
         panic!("{:?}", d.materials)
     };
-    assert_eq!(amount, 0.25);
+    assert_eq!(amount.constant(), Some(0.25));
     assert!(matches!(
         d.materials[materials[0] as usize],
         MaterialDesc::Diffuse { .. }
@@ -246,15 +265,15 @@ Material \"mix\" \"string materials\" [\"inner\" \"red\"] \"float amount\" 1
 Shape \"sphere\"
 "
     ));
-    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize] else {
+    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize].clone() else {
         panic!("{:?}", d.materials)
     };
-    assert_eq!(amount, 1.0);
+    assert_eq!(amount.constant(), Some(1.0));
     assert_eq!(
         d.materials[materials[0] as usize],
         MaterialDesc::Mix {
             materials: [materials[1], materials[0] - 1],
-            amount: 0.5
+            amount: 0.5.into()
         }
     );
 }
@@ -298,5 +317,118 @@ fn interface_and_its_pbrt_spellings_have_no_surface() {
         let (m, w) = material(&format!("\"{kind}\""));
         assert_eq!(m, MaterialDesc::Interface, "{kind}");
         assert!(w.is_empty(), "{w:?}");
+    }
+}
+
+/// A float and a spectrum checkerboard texture, `f` and `s`.
+const TEXTURES: &str = "WorldBegin
+Texture \"f\" \"float\" \"checkerboard\" \"float tex1\" 0.1 \"float tex2\" 0.3
+Texture \"s\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [0.1 0.2 0.3] \"rgb tex2\" [0.4 0.5 0.6]
+";
+
+/// The material of a sphere given `Material <decl>` after [`TEXTURES`].
+fn textured_material(decl: &str) -> MaterialDesc {
+    let (d, w) = load(&format!("{TEXTURES}Material {decl}\nShape \"sphere\""));
+    assert!(w.is_empty(), "{w:?}");
+    d.materials[d.shapes[0].material as usize].clone()
+}
+
+#[test]
+fn coated_and_mix_parameters_take_textures() {
+    let m = textured_material(
+        "\"coateddiffuse\" \"texture reflectance\" \"s\" \"texture uroughness\" \"f\" \"texture vroughness\" \"f\" \
+         \"texture thickness\" \"f\" \"texture albedo\" \"s\" \"texture g\" \"f\"",
+    );
+    let MaterialDesc::CoatedDiffuse {
+        reflectance,
+        u_roughness,
+        v_roughness,
+        thickness,
+        albedo,
+        g,
+        ..
+    } = m
+    else {
+        panic!("{m:?}")
+    };
+    assert!(reflectance.constant().is_none() && albedo.constant().is_none());
+    for t in [u_roughness, v_roughness, thickness, g] {
+        assert!(t.constant().is_none(), "{t:?}");
+    }
+    // A single roughness texture serves both directions.
+    let m = textured_material("\"coateddiffuse\" \"texture roughness\" \"f\"");
+    let MaterialDesc::CoatedDiffuse {
+        u_roughness,
+        v_roughness,
+        ..
+    } = m
+    else {
+        panic!("{m:?}")
+    };
+    assert!(u_roughness.constant().is_none() && v_roughness.constant().is_none());
+
+    let m = textured_material(
+        "\"coatedconductor\" \"texture interface.roughness\" \"f\" \"texture conductor.eta\" \"s\" \
+         \"texture conductor.k\" \"s\" \"texture conductor.uroughness\" \"f\" \"texture conductor.vroughness\" \"f\" \
+         \"texture thickness\" \"f\" \"texture albedo\" \"s\" \"texture g\" \"f\"",
+    );
+    let MaterialDesc::CoatedConductor {
+        interface_u_roughness,
+        interface_v_roughness,
+        conductor_eta,
+        conductor_k,
+        conductor_u_roughness,
+        conductor_v_roughness,
+        thickness,
+        albedo,
+        g,
+        ..
+    } = m
+    else {
+        panic!("{m:?}")
+    };
+    for t in [conductor_eta, conductor_k, albedo] {
+        assert!(t.constant().is_none(), "{t:?}");
+    }
+    for t in [
+        interface_u_roughness,
+        interface_v_roughness,
+        conductor_u_roughness,
+        conductor_v_roughness,
+        thickness,
+        g,
+    ] {
+        assert!(t.constant().is_none(), "{t:?}");
+    }
+    let m = textured_material("\"coatedconductor\" \"texture reflectance\" \"s\"");
+    let MaterialDesc::CoatedConductor { reflectance, .. } = m else {
+        panic!("{m:?}")
+    };
+    assert!(reflectance.is_some_and(|r| r.constant().is_none()));
+
+    let (d, w) = load(&format!(
+        "{TEXTURES}{}Material \"mix\" \"string materials\" [\"red\" \"gloss\"] \"texture amount\" \"f\"\nShape \"sphere\"",
+        &MIX["WorldBegin\n".len()..]
+    ));
+    assert!(w.is_empty(), "{w:?}");
+    let MaterialDesc::Mix { amount, .. } = &d.materials[d.shapes[0].material as usize] else {
+        panic!("{:?}", d.materials)
+    };
+    assert!(amount.constant().is_none(), "{amount:?}");
+}
+
+#[test]
+fn wrong_textures_on_coated_parameters_are_errors() {
+    let cases = [
+        ("\"coateddiffuse\" \"texture albedo\" \"f\"", "scene.pbrt:4:"),
+        ("\"coateddiffuse\" \"texture g\" \"s\"", "scene.pbrt:4:"),
+        ("\"coatedconductor\" \"texture thickness\" \"nothing\"", "scene.pbrt:4:"),
+        // pbrt-v4: the coat's index is a Float or Spectrum, not a texture.
+        ("\"coateddiffuse\" \"texture eta\" \"f\"", "scene.pbrt:4:"),
+        ("\"coatedconductor\" \"texture interface.eta\" \"f\"", "scene.pbrt:4:"),
+    ];
+    for (decl, expected) in cases {
+        let (_, e) = error(&format!("{TEXTURES}Material {decl}\nShape \"sphere\""));
+        assert!(e.starts_with(expected), "{decl}: {e}");
     }
 }

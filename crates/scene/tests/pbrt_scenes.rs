@@ -132,14 +132,14 @@ fn coffee_loads_with_its_coated_plastics() {
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     let m = &loaded.description.materials;
     let orange = MaterialDesc::CoatedDiffuse {
-        reflectance: Rgb::new(1.0, 0.378676, 0.013473),
-        u_roughness: 0.001,
-        v_roughness: 0.001,
+        reflectance: Rgb::new(1.0, 0.378676, 0.013473).into(),
+        u_roughness: 0.001.into(),
+        v_roughness: 0.001.into(),
         remap_roughness: false,
-        thickness: 0.01,
+        thickness: 0.01.into(),
         eta: 1.5,
-        albedo: Rgb::BLACK,
-        g: 0.0,
+        albedo: Rgb::BLACK.into(),
+        g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
     };

@@ -135,6 +135,15 @@ impl Walk {
     }
 }
 
+/// Rescale a walk's proportional value and density, `f / pdf` unchanged, to `pdf = 1`
+/// when `pdf` leaves [1e-12, 1e12], so that neither overflows nor underflows.
+fn rescale(f: &mut Rgb, pdf: &mut f32) {
+    if !(1e-12..=1e12).contains(pdf) {
+        *f /= *pdf;
+        *pdf = 1.0;
+    }
+}
+
 /// Only samples that carry something.
 fn valid(bs: Option<BsdfSample>) -> Option<BsdfSample> {
     bs.filter(|s| !s.f.is_black() && s.pdf > 0.0 && s.wi.z != 0.0)
@@ -336,6 +345,10 @@ impl<B: OpaqueBase> LayeredBxdf<B> {
         let mut z = self.thickness;
         let phase = HenyeyGreenstein { g: self.g };
         for depth in 0..self.max_depth {
+            // Only f / pdf matters: both grow by the coat's density (~1 / alpha^2 per
+            // bounce for a nearly smooth coat) or shrink on long walks, so rescale them
+            // before they overflow to inf / inf or underflow to 0 / 0.
+            rescale(&mut f, &mut pdf);
             // Russian roulette once the walk carries little.
             let rr_beta = f.max_component() / pdf;
             if depth > 3 && rr_beta < 0.25 {
@@ -347,11 +360,6 @@ impl<B: OpaqueBase> LayeredBxdf<B> {
             }
             if w.z == 0.0 {
                 return None;
-            }
-            // Only f / pdf matters: rescale both before long walks underflow them.
-            if pdf < 1e-12 {
-                f /= pdf;
-                pdf = 1.0;
             }
 
             if self.albedo.is_black() {
@@ -397,6 +405,7 @@ impl<B: OpaqueBase> LayeredBxdf<B> {
 
             // Leaving through the coat ends the walk.
             if bs.flags.contains(BxdfFlags::TRANSMISSION) {
+                rescale(&mut f, &mut pdf);
                 let side = if same_hemisphere(wo, w) {
                     BxdfFlags::REFLECTION
                 } else {

@@ -295,3 +295,44 @@ fn reciprocal_in_expectation() {
         }
     }
 }
+
+#[test]
+fn long_walks_in_a_nearly_smooth_coat_stay_finite() {
+    // Regression: the coffee scene's coateddiffuse (alpha 0.001, maxdepth 100) gave
+    // non-finite samples. Inside the slab the glossy coat reflects with densities ~1e5 per
+    // bounce, so the proportional f and pdf of a long walk both overflowed to inf, and
+    // f / pdf was NaN.
+    let cases = [
+        (
+            "white base, alpha 0.001",
+            coated_diffuse(1.0, 0.001, 0.01, 0.0, 0.0, 100),
+        ),
+        ("grey base, alpha 0.1", coated_diffuse(0.6, 0.1, 0.01, 0.0, 0.0, 100)),
+        ("scattering slab", coated_diffuse(1.0, 0.001, 0.5, 0.9, 0.5, 100)),
+        ("conductor", coated_conductor(0.99, 0.001, 0.001, 0.01, 0.0)),
+    ];
+    let mut rng = Pcg32::new(7, 11);
+    for (label, b) in &cases {
+        for _ in 0..20_000 {
+            let wo = sample_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let uc = rng.next_f32();
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            if let Some(s) = b.sample_f(wo, uc, u) {
+                let v = s.f * (s.wi.z.abs() / s.pdf);
+                assert!(
+                    s.f.is_finite() && s.pdf.is_finite() && s.pdf > 0.0 && v.is_finite(),
+                    "{label}: sample_f({wo}, {uc}, {u}) = {s:?}"
+                );
+            }
+        }
+        for _ in 0..2_000 {
+            let wo = sample_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let wi = sample_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let (f, pdf) = (b.f(wo, wi), b.pdf(wo, wi));
+            assert!(
+                f.is_finite() && pdf.is_finite() && pdf > 0.0,
+                "{label}: {wo} {wi}: {f:?} {pdf}"
+            );
+        }
+    }
+}

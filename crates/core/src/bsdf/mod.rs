@@ -1,6 +1,11 @@
 //! Layer 2: BSDFs. Lobes ([`Bxdf`]) are written in the local shading frame (z = shading
 //! normal); [`Bsdf`] wraps a lobe with its frame and works on world-space directions.
 //!
+//! [`Bsdf`] also knows the geometric normal and guards against the light leaks of shading
+//! normals (Veach 1997, section 5.3; pbrt-v3 `BSDF::f`): whether a pair of directions is
+//! a reflection or a transmission is decided by the geometric normal, and a lobe only
+//! contributes when the shading frame agrees.
+//!
 //! Conventions: `f` excludes the cosine factor; pdfs are per unit solid angle; `wo` and `wi`
 //! both point away from the surface.
 
@@ -111,10 +116,12 @@ impl Bxdf {
     }
 }
 
-/// A lobe placed in a shading frame.
+/// A lobe placed in a shading frame, with the geometric normal that guards it against
+/// light leaks (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bsdf {
     frame: Frame,
+    ng: Vec3,
     bxdf: Bxdf,
 }
 
@@ -125,13 +132,26 @@ impl Bsdf {
         &self.bxdf
     }
 
-    /// A BSDF with shading normal `ns` and tangent `dpdu`.
+    /// A BSDF with shading normal `ns`, tangent `dpdu` and geometric normal `ng` (either
+    /// orientation: only the side of a direction relative to the surface is used).
     #[must_use]
-    pub fn new(ns: Vec3, dpdu: Vec3, bxdf: Bxdf) -> Self {
+    pub fn new(ns: Vec3, dpdu: Vec3, ng: Vec3, bxdf: Bxdf) -> Self {
         Self {
             frame: Frame::from_zx(ns, dpdu),
+            ng,
             bxdf,
         }
+    }
+
+    /// True when the geometric surface sees `wo` and `wi` on the same side (a reflection).
+    fn reflects_geometrically(&self, wo: Vec3, wi: Vec3) -> bool {
+        wo.dot(self.ng) * wi.dot(self.ng) > 0.0
+    }
+
+    /// True when the geometric normal and the shading frame agree on whether the world
+    /// directions `wo`, `wi` (local `wo_l`, `wi_l`) are a reflection or a transmission.
+    fn sides_agree(&self, wo: Vec3, wi: Vec3, wo_l: Vec3, wi_l: Vec3) -> bool {
+        self.reflects_geometrically(wo, wi) == same_hemisphere(wo_l, wi_l)
     }
 
     /// Kinds of scattering.
@@ -140,41 +160,47 @@ impl Bsdf {
         self.bxdf.flags()
     }
 
-    /// `f(wo, wi)` for world-space directions.
+    /// `f(wo, wi)` for world-space directions; zero when the geometric normal and the
+    /// shading frame disagree on reflection versus transmission (the light-leak guard).
     #[must_use]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
-        if wo.z == 0.0 {
+        let (wo_l, wi_l) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        if wo_l.z == 0.0 || !self.sides_agree(wo, wi, wo_l, wi_l) {
             return Rgb::BLACK;
         }
-        self.bxdf.f(wo, wi)
+        self.bxdf.f(wo_l, wi_l)
     }
 
-    /// Sample an incident direction (world space) for outgoing `wo`.
+    /// Sample an incident direction (world space) for outgoing `wo`; `None` when the
+    /// sampled direction's side of the geometric surface disagrees with the kind of lobe
+    /// sampled (reflection or transmission), as [`Self::f`] would be zero there.
     #[must_use]
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
-        let wo = self.frame.to_local(wo);
-        if wo.z == 0.0 || self.bxdf.flags().is_empty() {
+        let wo_l = self.frame.to_local(wo);
+        if wo_l.z == 0.0 || self.bxdf.flags().is_empty() {
             return None;
         }
-        let bs = self.bxdf.sample_f(wo, uc, u)?;
+        let bs = self.bxdf.sample_f(wo_l, uc, u)?;
         if bs.f.is_black() || bs.pdf == 0.0 || bs.wi.z == 0.0 || !bs.pdf.is_finite() {
             return None;
         }
-        Some(BsdfSample {
-            wi: self.frame.from_local(bs.wi),
-            ..bs
-        })
+        let wi = self.frame.from_local(bs.wi);
+        if self.reflects_geometrically(wo, wi) != bs.flags.contains(BxdfFlags::REFLECTION) {
+            return None;
+        }
+        Some(BsdfSample { wi, ..bs })
     }
 
-    /// Density of [`Self::sample_f`] for world-space directions.
+    /// Density of [`Self::sample_f`] for world-space directions: zero where the light-leak
+    /// guard rejects the pair, as [`Self::sample_f`] never returns such a direction. (The
+    /// lobe's density elsewhere is not renormalised for the rejected samples, as in pbrt.)
     #[must_use]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
-        if wo.z == 0.0 {
+        let (wo_l, wi_l) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        if wo_l.z == 0.0 || !self.sides_agree(wo, wi, wo_l, wi_l) {
             return 0.0;
         }
-        self.bxdf.pdf(wo, wi)
+        self.bxdf.pdf(wo_l, wi_l)
     }
 }
 

@@ -205,7 +205,7 @@ fn diffuse_white_furnace_reflects_everything() {
 
 #[test]
 fn black_diffuse_has_no_lobe() {
-    let b = Bsdf::new(Vec3::Z, Vec3::X, Bxdf::Diffuse(DiffuseBxdf { r: Rgb::BLACK }));
+    let b = Bsdf::new(Vec3::Z, Vec3::X, Vec3::Z, Bxdf::Diffuse(DiffuseBxdf { r: Rgb::BLACK }));
     assert!(b.flags().is_empty());
     assert!(b.sample_f(Vec3::Z, 0.5, Vec2::splat(0.5)).is_none());
 }
@@ -213,11 +213,42 @@ fn black_diffuse_has_no_lobe() {
 #[test]
 fn bsdf_frame_round_trips_world_directions() {
     let ns = Vec3::new(0.2, 0.9, -0.1).normalize();
-    let b = Bsdf::new(ns, Vec3::X, Bxdf::Diffuse(DiffuseBxdf { r: Rgb::WHITE }));
+    let b = Bsdf::new(ns, Vec3::X, ns, Bxdf::Diffuse(DiffuseBxdf { r: Rgb::WHITE }));
     let wo = Vec3::new(0.1, 0.5, 0.3).normalize();
     let s = b.sample_f(wo, 0.3, Vec2::new(0.2, 0.7)).unwrap();
     assert!(s.wi.dot(ns) > 0.0, "reflection stays on the side of wo");
     assert!((b.pdf(wo, s.wi) - s.pdf).abs() < 1e-4);
+}
+
+#[test]
+fn light_leak_guard_follows_the_geometric_normal() {
+    // Shading normal tilted 72 degrees from the geometric one (z).
+    let ns = Vec3::new(0.95, 0.0, 0.31).normalize();
+    let b = Bsdf::new(ns, Vec3::Y, Vec3::Z, Bxdf::Diffuse(DiffuseBxdf { r: Rgb::WHITE }));
+    let wo = Vec3::Z;
+    // Below the geometric surface, above the shading one: a reflection for the lobe only.
+    let leak = Vec3::new(1.0, 0.0, -0.2).normalize();
+    assert!(leak.dot(ns) > 0.0);
+    assert!(b.f(wo, leak).is_black());
+    assert_eq!(b.pdf(wo, leak), 0.0);
+    // Above both: unchanged.
+    let ok = Vec3::new(0.5, 0.0, 0.5).normalize();
+    assert!(!b.f(wo, ok).is_black() && b.pdf(wo, ok) > 0.0);
+    // Samples below the geometric surface are dropped; the others keep the lobe's density.
+    let mut rng = Pcg32::new(3, 5);
+    let (mut kept, mut dropped) = (0, 0);
+    for _ in 0..4096 {
+        let u = Vec2::new(rng.next_f32(), rng.next_f32());
+        match b.sample_f(wo, 0.5, u) {
+            Some(s) => {
+                kept += 1;
+                assert!(s.wi.z > 0.0, "{s:?}");
+                assert!((b.pdf(wo, s.wi) - s.pdf).abs() <= 1e-4 * s.pdf, "{s:?}");
+            }
+            None => dropped += 1,
+        }
+    }
+    assert!(kept > 0 && dropped > 0, "{kept} {dropped}");
 }
 
 // ---- conductors -------------------------------------------------------------------------

@@ -4,14 +4,17 @@
 //! [`Material::bsdf`] resolves them (alphas from roughness, conductor indices from a
 //! reflectance) per hit. Constant textures give the same BSDF at every hit.
 //!
+//! The coated materials build their stochastic [`LayeredBxdf`] per hit from their
+//! evaluated textures (it is a small `Copy` value).
+//!
 //! Two materials are not surfaces themselves: [`Material::Mix`] names two others and
 //! picks one per shading point ([`Material::mix_choice`]; the scene follows the choice,
 //! see `Scene::bsdf`), and [`Material::Interface`] has no BSDF at all, so rays pass
 //! through it.
 
 use crate::bsdf::{
-    roughness_to_alpha, Bsdf, Bxdf, CoatedConductorBxdf, CoatedDiffuseBxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf,
-    DiffuseTransmissionBxdf, LayeredBxdf, ThinDielectricBxdf, TrowbridgeReitz,
+    roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf, LayeredBxdf,
+    ThinDielectricBxdf, TrowbridgeReitz,
 };
 use crate::color::Rgb;
 use crate::sampling::hash_u64s;
@@ -67,16 +70,66 @@ pub enum Material {
         /// Factor on both.
         scale: f32,
     },
-    /// A dielectric coat over a Lambertian base.
-    CoatedDiffuse(CoatedDiffuseBxdf),
-    /// A dielectric coat over a conductor.
-    CoatedConductor(CoatedConductorBxdf),
+    /// A dielectric coat over a Lambertian base (see [`MaterialDesc::CoatedDiffuse`]).
+    CoatedDiffuse {
+        /// Albedo of the base (clamped to [0, 1] per hit).
+        reflectance: RgbTexture,
+        /// Coat roughness along `dpdu`.
+        u_roughness: FloatTexture,
+        /// Coat roughness along the bitangent.
+        v_roughness: FloatTexture,
+        /// Map roughness to alpha by `sqrt`.
+        remap_roughness: bool,
+        /// Slab thickness (at least the smallest normal `f32` per hit).
+        thickness: FloatTexture,
+        /// Index of refraction of the coat; 0 means 1.
+        eta: f32,
+        /// Single-scattering albedo of the slab (clamped to [0, 1] per hit).
+        albedo: RgbTexture,
+        /// Henyey-Greenstein asymmetry (clamped to [-0.999, 0.999] per hit).
+        g: FloatTexture,
+        /// Maximum scattering events of a walk.
+        max_depth: u32,
+        /// Walks per evaluation (at least 1).
+        n_samples: u32,
+    },
+    /// A dielectric coat over a conductor (see [`MaterialDesc::CoatedConductor`]).
+    CoatedConductor {
+        /// Coat roughness along `dpdu`.
+        interface_u_roughness: FloatTexture,
+        /// Coat roughness along the bitangent.
+        interface_v_roughness: FloatTexture,
+        /// Index of refraction of the coat; 0 means 1.
+        interface_eta: f32,
+        /// Real part of the conductor's index, relative to vacuum.
+        conductor_eta: RgbTexture,
+        /// Imaginary part, relative to vacuum.
+        conductor_k: RgbTexture,
+        /// When given, replaces `conductor_eta` and `conductor_k`.
+        reflectance: Option<RgbTexture>,
+        /// Conductor roughness along `dpdu`.
+        conductor_u_roughness: FloatTexture,
+        /// Conductor roughness along the bitangent.
+        conductor_v_roughness: FloatTexture,
+        /// Map both roughnesses to alpha by `sqrt`.
+        remap_roughness: bool,
+        /// Slab thickness (at least the smallest normal `f32` per hit).
+        thickness: FloatTexture,
+        /// Single-scattering albedo of the slab (clamped to [0, 1] per hit).
+        albedo: RgbTexture,
+        /// Henyey-Greenstein asymmetry (clamped to [-0.999, 0.999] per hit).
+        g: FloatTexture,
+        /// Maximum scattering events of a walk.
+        max_depth: u32,
+        /// Walks per evaluation (at least 1).
+        n_samples: u32,
+    },
     /// One of two materials per shading point.
     Mix {
         /// Indices into the scene's materials.
         materials: [u32; 2],
         /// Probability of choosing the second.
-        amount: f32,
+        amount: FloatTexture,
     },
     /// No surface: rays pass through.
     Interface,
@@ -156,17 +209,18 @@ impl Material {
                 g,
                 max_depth,
                 n_samples,
-            } => Self::CoatedDiffuse(LayeredBxdf {
-                top: coat(eta, u_roughness, v_roughness, remap_roughness),
-                bottom: DiffuseBxdf {
-                    r: reflectance.map(|v| v.clamp(0.0, 1.0)),
-                },
-                thickness: thickness.max(f32::MIN_POSITIVE),
-                albedo: albedo.map(|v| v.clamp(0.0, 1.0)),
-                g: g.clamp(-MAX_ABS_G, MAX_ABS_G),
+            } => Self::CoatedDiffuse {
+                reflectance,
+                u_roughness,
+                v_roughness,
+                remap_roughness,
+                thickness,
+                eta,
+                albedo,
+                g,
                 max_depth,
-                n_samples: n_samples.max(1),
-            }),
+                n_samples,
+            },
             MaterialDesc::CoatedConductor {
                 interface_u_roughness,
                 interface_v_roughness,
@@ -182,46 +236,38 @@ impl Material {
                 g,
                 max_depth,
                 n_samples,
-            } => {
-                let top = coat(
-                    interface_eta,
-                    interface_u_roughness,
-                    interface_v_roughness,
-                    remap_roughness,
-                );
-                let (eta, k) = reflectance.map_or((conductor_eta, conductor_k), index_from_reflectance);
-                Self::CoatedConductor(LayeredBxdf {
-                    top,
-                    // pbrt-v4: the base's index is relative to the coat above it.
-                    bottom: ConductorBxdf {
-                        distrib: TrowbridgeReitz::new(
-                            alpha(conductor_u_roughness, remap_roughness),
-                            alpha(conductor_v_roughness, remap_roughness),
-                        ),
-                        eta: eta / top.eta,
-                        k: k / top.eta,
-                    },
-                    thickness: thickness.max(f32::MIN_POSITIVE),
-                    albedo: albedo.map(|v| v.clamp(0.0, 1.0)),
-                    g: g.clamp(-MAX_ABS_G, MAX_ABS_G),
-                    max_depth,
-                    n_samples: n_samples.max(1),
-                })
-            }
+            } => Self::CoatedConductor {
+                interface_u_roughness,
+                interface_v_roughness,
+                interface_eta,
+                conductor_eta,
+                conductor_k,
+                reflectance,
+                conductor_u_roughness,
+                conductor_v_roughness,
+                remap_roughness,
+                thickness,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+            },
             MaterialDesc::Mix { materials, amount } => Self::Mix { materials, amount },
             MaterialDesc::Interface => Self::Interface,
         }
     }
 
     /// For [`Self::Mix`], the index of the material used at `si` (pbrt-v4
-    /// `MixMaterial::ChooseMaterial`): the first when `amount <= 0`, the second when
-    /// `amount >= 1`, else the second when a hash of the point, `wo` and the two indices,
-    /// mapped to [0, 1), is below `amount`. `None` for every other material.
+    /// `MixMaterial::ChooseMaterial`), with `amount` evaluated at `ctx`: the first when
+    /// `amount <= 0`, the second when `amount >= 1`, else the second when a hash of the
+    /// point, `wo` and the two indices, mapped to [0, 1), is below `amount`. `None` for
+    /// every other material.
     #[must_use]
-    pub fn mix_choice(&self, si: &SurfaceInteraction) -> Option<u32> {
-        let Self::Mix { materials, amount } = *self else {
+    pub fn mix_choice(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<u32> {
+        let Self::Mix { materials, amount } = self else {
             return None;
         };
+        let (materials, amount) = (*materials, amount.evaluate(ctx));
         if amount <= 0.0 {
             return Some(materials[0]);
         }
@@ -276,12 +322,53 @@ impl Material {
                 transmittance,
                 ..
             } => !(reflectance.is_constant() && transmittance.is_constant()),
-            Self::CoatedDiffuse(_) | Self::CoatedConductor(_) | Self::Mix { .. } | Self::Interface => false,
+            Self::CoatedDiffuse {
+                reflectance,
+                u_roughness,
+                v_roughness,
+                thickness,
+                albedo,
+                g,
+                ..
+            } => {
+                !(reflectance.is_constant()
+                    && u_roughness.is_constant()
+                    && v_roughness.is_constant()
+                    && thickness.is_constant()
+                    && albedo.is_constant()
+                    && g.is_constant())
+            }
+            Self::CoatedConductor {
+                interface_u_roughness,
+                interface_v_roughness,
+                conductor_eta,
+                conductor_k,
+                reflectance,
+                conductor_u_roughness,
+                conductor_v_roughness,
+                thickness,
+                albedo,
+                g,
+                ..
+            } => {
+                !(interface_u_roughness.is_constant()
+                    && interface_v_roughness.is_constant()
+                    && conductor_eta.is_constant()
+                    && conductor_k.is_constant()
+                    && reflectance.as_ref().is_none_or(RgbTexture::is_constant)
+                    && conductor_u_roughness.is_constant()
+                    && conductor_v_roughness.is_constant()
+                    && thickness.is_constant()
+                    && albedo.is_constant()
+                    && g.is_constant())
+            }
+            Self::Mix { amount, .. } => !amount.is_constant(),
+            Self::Interface => false,
         }
     }
 
     /// The BSDF at a hit, in the shading frame of `si.ns` with `si.dpdu` as first tangent,
-    /// with the textures evaluated at `ctx`; `None` for [`Self::Interface`] and for
+    /// guarded by the geometric normal `si.n()`, with the textures evaluated at `ctx`; `None` for [`Self::Interface`] and for
     /// [`Self::Mix`] (resolve it with [`Self::mix_choice`] first).
     #[must_use]
     pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<Bsdf> {
@@ -328,11 +415,80 @@ impl Material {
                 r: (reflectance.evaluate(ctx) * *scale).map(|v| v.clamp(0.0, 1.0)),
                 t: (transmittance.evaluate(ctx) * *scale).map(|v| v.clamp(0.0, 1.0)),
             }),
-            Self::CoatedDiffuse(b) => Bxdf::CoatedDiffuse(*b),
-            Self::CoatedConductor(b) => Bxdf::CoatedConductor(*b),
+            Self::CoatedDiffuse {
+                reflectance,
+                u_roughness,
+                v_roughness,
+                remap_roughness,
+                thickness,
+                eta,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+            } => Bxdf::CoatedDiffuse(LayeredBxdf {
+                top: coat(
+                    *eta,
+                    u_roughness.evaluate(ctx),
+                    v_roughness.evaluate(ctx),
+                    *remap_roughness,
+                ),
+                bottom: DiffuseBxdf {
+                    r: reflectance.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
+                },
+                thickness: thickness.evaluate(ctx).max(f32::MIN_POSITIVE),
+                albedo: albedo.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
+                g: g.evaluate(ctx).clamp(-MAX_ABS_G, MAX_ABS_G),
+                max_depth: *max_depth,
+                n_samples: (*n_samples).max(1),
+            }),
+            Self::CoatedConductor {
+                interface_u_roughness,
+                interface_v_roughness,
+                interface_eta,
+                conductor_eta,
+                conductor_k,
+                reflectance,
+                conductor_u_roughness,
+                conductor_v_roughness,
+                remap_roughness,
+                thickness,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+            } => {
+                let top = coat(
+                    *interface_eta,
+                    interface_u_roughness.evaluate(ctx),
+                    interface_v_roughness.evaluate(ctx),
+                    *remap_roughness,
+                );
+                let (eta, k) = match reflectance {
+                    Some(r) => index_from_reflectance(r.evaluate(ctx)),
+                    None => (conductor_eta.evaluate(ctx), conductor_k.evaluate(ctx)),
+                };
+                Bxdf::CoatedConductor(LayeredBxdf {
+                    top,
+                    // pbrt-v4: the base's index is relative to the coat above it.
+                    bottom: ConductorBxdf {
+                        distrib: TrowbridgeReitz::new(
+                            alpha(conductor_u_roughness.evaluate(ctx), *remap_roughness),
+                            alpha(conductor_v_roughness.evaluate(ctx), *remap_roughness),
+                        ),
+                        eta: eta / top.eta,
+                        k: k / top.eta,
+                    },
+                    thickness: thickness.evaluate(ctx).max(f32::MIN_POSITIVE),
+                    albedo: albedo.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
+                    g: g.evaluate(ctx).clamp(-MAX_ABS_G, MAX_ABS_G),
+                    max_depth: *max_depth,
+                    n_samples: (*n_samples).max(1),
+                })
+            }
             Self::Mix { .. } | Self::Interface => return None,
         };
-        Some(Bsdf::new(si.ns, si.dpdu, bxdf))
+        Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
     }
 }
 
@@ -408,6 +564,92 @@ mod tests {
                 panic!()
             };
             assert_eq!((distrib.alpha_x, distrib.alpha_y), (expected, 0.0));
+        }
+    }
+
+    /// A texture that is not a constant (so `is_textured` sees it) evaluating to `v * s`.
+    fn scaled<T: crate::texture::TextureValue>(v: T, s: f32) -> crate::texture::Texture<T> {
+        crate::texture::Texture::Scale(std::sync::Arc::new(crate::texture::ScaleTexture {
+            tex: v.into(),
+            scale: s.into(),
+        }))
+    }
+
+    #[test]
+    fn coated_parameters_are_textures_evaluated_per_hit() {
+        let m = Material::from_desc(&MaterialDesc::CoatedDiffuse {
+            reflectance: scaled(Rgb::new(0.2, 0.4, 0.6), 2.0),
+            u_roughness: scaled(0.1, 2.0),
+            v_roughness: 0.3.into(),
+            remap_roughness: false,
+            thickness: scaled(0.25, 2.0),
+            eta: 1.5,
+            albedo: scaled(Rgb::splat(0.25), 2.0),
+            g: scaled(0.3, -1.0),
+            max_depth: 7,
+            n_samples: 0,
+        });
+        assert!(m.is_textured());
+        let Bxdf::CoatedDiffuse(b) = bxdf(&m) else { panic!() };
+        assert_eq!(b.bottom.r, Rgb::new(0.4, 0.8, 1.0));
+        assert_eq!(
+            (b.top.eta, b.top.distrib.alpha_x, b.top.distrib.alpha_y),
+            (1.5, 0.2, 0.3)
+        );
+        assert_eq!((b.thickness, b.albedo, b.g), (0.5, Rgb::splat(0.5), -0.3));
+        assert_eq!((b.max_depth, b.n_samples), (7, 1));
+
+        let m = Material::from_desc(&MaterialDesc::CoatedConductor {
+            interface_u_roughness: scaled(0.1, 2.0),
+            interface_v_roughness: 0.1.into(),
+            interface_eta: 2.0,
+            conductor_eta: scaled(Rgb::splat(0.5), 2.0),
+            conductor_k: scaled(Rgb::splat(2.0), 2.0),
+            reflectance: None,
+            conductor_u_roughness: scaled(0.2, 2.0),
+            conductor_v_roughness: 0.2.into(),
+            remap_roughness: false,
+            thickness: scaled(0.1, 3.0),
+            albedo: Rgb::BLACK.into(),
+            g: 0.0.into(),
+            max_depth: 10,
+            n_samples: 1,
+        });
+        assert!(m.is_textured());
+        let Bxdf::CoatedConductor(b) = bxdf(&m) else { panic!() };
+        assert_eq!((b.top.eta, b.top.distrib.alpha_x), (2.0, 0.2));
+        // The base's index relative to the coat.
+        assert_eq!((b.bottom.eta, b.bottom.k), (Rgb::splat(0.5), Rgb::splat(2.0)));
+        assert_eq!((b.bottom.distrib.alpha_x, b.bottom.distrib.alpha_y), (0.4, 0.2));
+        assert!((b.thickness - 0.3).abs() < 1e-6);
+
+        // Constants everywhere: no footprint needed.
+        let m = Material::from_desc(&MaterialDesc::CoatedDiffuse {
+            reflectance: Rgb::splat(0.5).into(),
+            u_roughness: 0.0.into(),
+            v_roughness: 0.0.into(),
+            remap_roughness: true,
+            thickness: 0.01.into(),
+            eta: 1.5,
+            albedo: Rgb::BLACK.into(),
+            g: 0.0.into(),
+            max_depth: 10,
+            n_samples: 1,
+        });
+        assert!(!m.is_textured());
+    }
+
+    #[test]
+    fn mix_amount_is_a_texture_evaluated_per_hit() {
+        let si = hit();
+        let ctx = TextureContext::at_point(&si);
+        for (amount, expected) in [(scaled(1.0, 0.0), 3), (scaled(0.5, 2.0), 4)] {
+            let m = Material::from_desc(&MaterialDesc::Mix {
+                materials: [3, 4],
+                amount,
+            });
+            assert!(m.is_textured());
+            assert_eq!(m.mix_choice(&si, &ctx), Some(expected));
         }
     }
 

@@ -11,7 +11,6 @@ use super::{
 };
 use crate::accel::Bvh;
 use crate::camera::{Camera, PerspectiveCamera};
-use crate::color::Rgb;
 use crate::film::Filter;
 use crate::light::{
     DiffuseAreaLight, DistantLight, ImageInfiniteLight, Light, PointLight, PowerLightSampler, SpotLight,
@@ -168,10 +167,13 @@ impl SceneDescription {
                     g,
                     ..
                 } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &reflectance.to_array())?;
-                    check_non_negative(&format!("roughness of material {i}"), &[*u_roughness, *v_roughness])?;
+                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
+                    check_non_negative(
+                        &format!("roughness of material {i}"),
+                        &float_constants(&[u_roughness, v_roughness]),
+                    )?;
                     check_positive_eta(i, *eta)?;
-                    check_slab(i, *thickness, *albedo, *g)?;
+                    check_slab(i, thickness, albedo, g)?;
                 }
                 MaterialDesc::CoatedConductor {
                     interface_u_roughness,
@@ -189,23 +191,23 @@ impl SceneDescription {
                 } => {
                     check_non_negative(
                         &format!("roughness of material {i}"),
-                        &[
-                            *interface_u_roughness,
-                            *interface_v_roughness,
-                            *conductor_u_roughness,
-                            *conductor_v_roughness,
-                        ],
+                        &float_constants(&[
+                            interface_u_roughness,
+                            interface_v_roughness,
+                            conductor_u_roughness,
+                            conductor_v_roughness,
+                        ]),
                     )?;
                     check_positive_eta(i, *interface_eta)?;
-                    check_non_negative(&format!("conductor eta of material {i}"), &conductor_eta.to_array())?;
-                    check_non_negative(&format!("conductor k of material {i}"), &conductor_k.to_array())?;
+                    check_non_negative(&format!("conductor eta of material {i}"), &rgb_constant(conductor_eta))?;
+                    check_non_negative(&format!("conductor k of material {i}"), &rgb_constant(conductor_k))?;
                     if let Some(r) = reflectance {
-                        check_non_negative(&format!("reflectance of material {i}"), &r.to_array())?;
+                        check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(r))?;
                     }
-                    check_slab(i, *thickness, *albedo, *g)?;
+                    check_slab(i, thickness, albedo, g)?;
                 }
                 MaterialDesc::Mix { materials, amount } => {
-                    check_finite(&format!("amount of material {i}"), &[*amount])?;
+                    check_finite(&format!("amount of material {i}"), &float_constants(&[amount]))?;
                     if let Some(m) = materials.iter().find(|m| **m as usize >= self.materials.len()) {
                         return Err(invalid(
                             format!("material {i}"),
@@ -539,10 +541,18 @@ fn check_positive_eta(material: usize, eta: f32) -> Result<(), BuildError> {
 
 /// The slab of a layered material: thickness and albedo finite and non-negative, `g`
 /// finite (clamped as pbrt does when the material is built).
-fn check_slab(material: usize, thickness: f32, albedo: Rgb, g: f32) -> Result<(), BuildError> {
-    check_non_negative(&format!("thickness of material {material}"), &[thickness])?;
-    check_non_negative(&format!("albedo of material {material}"), &albedo.to_array())?;
-    check_finite(&format!("g of material {material}"), &[g])
+fn check_slab(
+    material: usize,
+    thickness: &FloatTexture,
+    albedo: &RgbTexture,
+    g: &FloatTexture,
+) -> Result<(), BuildError> {
+    check_non_negative(
+        &format!("thickness of material {material}"),
+        &float_constants(&[thickness]),
+    )?;
+    check_non_negative(&format!("albedo of material {material}"), &rgb_constant(albedo))?;
+    check_finite(&format!("g of material {material}"), &float_constants(&[g]))
 }
 
 /// Error when a `Mix` material contains itself, directly or through other mixes (a

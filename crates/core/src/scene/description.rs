@@ -337,22 +337,22 @@ pub enum MaterialDesc {
     /// A dielectric coat over a Lambertian base with a scattering slab between them (pbrt
     /// `coateddiffuse`), evaluated stochastically.
     CoatedDiffuse {
-        /// Albedo of the base, in [0, 1].
-        reflectance: Rgb,
+        /// Albedo of the base, in [0, 1] (clamped per hit).
+        reflectance: RgbTexture,
         /// Coat roughness along the shading tangent.
-        u_roughness: f32,
+        u_roughness: FloatTexture,
         /// Coat roughness along the bitangent.
-        v_roughness: f32,
+        v_roughness: FloatTexture,
         /// As for [`MaterialDesc::Conductor`].
         remap_roughness: bool,
         /// Slab thickness in mean free paths (pbrt default 0.01).
-        thickness: f32,
+        thickness: FloatTexture,
         /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
         eta: f32,
         /// Single-scattering albedo of the slab (pbrt default 0: absorbing only).
-        albedo: Rgb,
+        albedo: RgbTexture,
         /// Henyey-Greenstein asymmetry of the slab, in (-1, 1) (pbrt default 0).
-        g: f32,
+        g: FloatTexture,
         /// Maximum scattering events of a random walk (pbrt default 10).
         max_depth: u32,
         /// Random walks per evaluation (pbrt default 1).
@@ -362,31 +362,31 @@ pub enum MaterialDesc {
     /// `coatedconductor`), evaluated stochastically.
     CoatedConductor {
         /// Coat roughness along the shading tangent.
-        interface_u_roughness: f32,
+        interface_u_roughness: FloatTexture,
         /// Coat roughness along the bitangent.
-        interface_v_roughness: f32,
+        interface_v_roughness: FloatTexture,
         /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
         interface_eta: f32,
         /// Real part of the conductor's index of refraction, relative to vacuum as pbrt
         /// gives it (divided by the coat's index when the material is built).
-        conductor_eta: Rgb,
+        conductor_eta: RgbTexture,
         /// Imaginary part, relative to vacuum (divided likewise).
-        conductor_k: Rgb,
+        conductor_k: RgbTexture,
         /// When given, replaces `conductor_eta` and `conductor_k` as for
         /// [`MaterialDesc::Conductor`] (relative to the coat).
-        reflectance: Option<Rgb>,
+        reflectance: Option<RgbTexture>,
         /// Conductor roughness along the shading tangent.
-        conductor_u_roughness: f32,
+        conductor_u_roughness: FloatTexture,
         /// Conductor roughness along the bitangent.
-        conductor_v_roughness: f32,
+        conductor_v_roughness: FloatTexture,
         /// Remap both roughnesses as for [`MaterialDesc::Conductor`].
         remap_roughness: bool,
         /// Slab thickness in mean free paths (pbrt default 0.01).
-        thickness: f32,
+        thickness: FloatTexture,
         /// Single-scattering albedo of the slab (pbrt default 0).
-        albedo: Rgb,
+        albedo: RgbTexture,
         /// Henyey-Greenstein asymmetry of the slab (pbrt default 0).
-        g: f32,
+        g: FloatTexture,
         /// Maximum scattering events of a random walk (pbrt default 10).
         max_depth: u32,
         /// Random walks per evaluation (pbrt default 1).
@@ -398,7 +398,7 @@ pub enum MaterialDesc {
         /// The two materials (indices into [`SceneDescription::materials`]; no cycles).
         materials: [MaterialId; 2],
         /// Probability of the second, clamped to [0, 1] (pbrt default 0.5).
-        amount: f32,
+        amount: FloatTexture,
     },
     /// No surface at all (pbrt `interface`, which marks medium boundaries): rays pass
     /// straight through, shadow rays included.

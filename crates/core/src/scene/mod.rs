@@ -133,15 +133,19 @@ impl Scene {
     /// vertex; other materials skip that work.
     pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
         let m = self.resolve_material(material, si);
-        let ctx = if m.is_textured() {
+        m.bsdf(si, &self.texture_context(m, si))
+    }
+
+    /// The texture context of `m` at `si`: with the pixel footprint when `m` is textured.
+    fn texture_context(&self, m: &Material, si: &SurfaceInteraction) -> TextureContext {
+        if m.is_textured() {
             let (dpdx, dpdy) = self
                 .camera
                 .approximate_dp_dxy(si.p(), si.n(), self.sampler.samples_per_pixel);
             TextureContext::with_footprint(si, dpdx, dpdy)
         } else {
             TextureContext::at_point(si)
-        };
-        m.bsdf(si, &ctx)
+        }
     }
 
     /// True when material `material` at `si` is an `interface` (no surface), without
@@ -151,10 +155,14 @@ impl Scene {
         self.has_interfaces && matches!(self.resolve_material(material, si), Material::Interface)
     }
 
-    /// The material used at `si`: `material` itself, or what its mixes choose there.
+    /// The material used at `si`: `material` itself, or what its mixes choose there
+    /// (their amounts evaluated at `si`).
     fn resolve_material(&self, material: u32, si: &SurfaceInteraction) -> &Material {
         let mut m = &self.materials[material as usize];
-        while let Some(next) = m.mix_choice(si) {
+        while matches!(m, Material::Mix { .. }) {
+            let Some(next) = m.mix_choice(si, &self.texture_context(m, si)) else {
+                break;
+            };
             m = &self.materials[next as usize];
         }
         m

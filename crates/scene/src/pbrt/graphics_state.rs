@@ -4,7 +4,7 @@
 
 use glam::Mat4;
 use mcrender_core::color::Rgb;
-use mcrender_core::scene::{AreaLightDesc, MaterialDesc};
+use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc};
 
 use super::params::Param;
 use crate::error::Location;
@@ -28,7 +28,7 @@ pub enum MaterialRef {
         /// The names of the two materials.
         names: [String; 2],
         /// Probability of the second.
-        amount: f32,
+        amount: FloatTexture,
         /// Location of the `materials` parameter.
         loc: Location,
     },

@@ -2,8 +2,9 @@
 //!
 //! Supported pbrt-v4 material types. Every parameter pbrt-v4 textures may also be given as
 //! `"texture name" "tex"` naming a texture of the right type (see [`super::textures`]):
-//! reflectances, conductor `eta`/`k`, roughnesses. Dielectric `eta` stays a constant, as in
-//! pbrt-v4. `displacement` and `normalmap` are warned about and ignored.
+//! reflectances, conductor `eta`/`k`, roughnesses, and the coated materials' `thickness`,
+//! `albedo`, `g` and their conductor's parameters, and `mix`'s `amount`. Dielectric `eta`
+//! (and `interface.eta`) stays a constant, as in pbrt-v4. Range checks apply to constants. `displacement` and `normalmap` are warned about and ignored.
 //! - `diffuse`: `reflectance` (default 0.5).
 //! - `conductor`: `eta` and `k` as `rgb` or as a named spectrum (`metal-Cu-eta`,
 //!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`super::spectra`]), default copper; or
@@ -115,8 +116,8 @@ impl SceneBuilder {
             }
         };
         let loc = p.loc.clone();
-        let amount = params.float("amount", 0.5)?;
-        if !amount.is_finite() {
+        let amount = self.textures.float(params, "amount", 0.5)?;
+        if amount.constant().is_some_and(|a| !a.is_finite()) {
             let p = params.get("amount").map_or(&params.loc, |p| &p.loc);
             return Err(SceneError::invalid(
                 p,
@@ -233,10 +234,12 @@ impl SceneBuilder {
             }
             "coateddiffuse" => {
                 let reflectance = self
-                    .constant_spectrum_param(params, "reflectance", SpectrumKind::Albedo)?
-                    .unwrap_or(Rgb::splat(0.5));
-                check_unit_interval(params, "reflectance", reflectance)?;
-                let (u_roughness, v_roughness) = roughness(params)?;
+                    .spectrum_param(params, "reflectance", SpectrumKind::Albedo)?
+                    .unwrap_or_else(|| Rgb::splat(0.5).into());
+                if let Some(r) = reflectance.constant() {
+                    check_unit_interval(params, "reflectance", r)?;
+                }
+                let (u_roughness, v_roughness) = self.roughness(params)?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 let eta = dielectric_eta(params)?;
                 let slab = slab(self, params)?;
@@ -255,11 +258,11 @@ impl SceneBuilder {
                 })
             }
             "coatedconductor" => {
-                let (interface_u_roughness, interface_v_roughness) = prefixed_roughness(params, "interface.")?;
+                let (interface_u_roughness, interface_v_roughness) = self.prefixed_roughness(params, "interface.")?;
                 let interface_eta = dielectric_eta_named(params, "interface.eta")?;
-                let reflectance = self.constant_spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
-                let eta = self.constant_spectrum_param(params, "conductor.eta", SpectrumKind::MetalIndex)?;
-                let k = self.constant_spectrum_param(params, "conductor.k", SpectrumKind::MetalIndex)?;
+                let reflectance = self.spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
+                let eta = self.spectrum_param(params, "conductor.eta", SpectrumKind::MetalIndex)?;
+                let k = self.spectrum_param(params, "conductor.k", SpectrumKind::MetalIndex)?;
                 if reflectance.is_some() && (eta.is_some() || k.is_some()) {
                     let p = params.get("reflectance").map_or(&params.loc, |p| &p.loc);
                     return Err(SceneError::invalid(
@@ -270,10 +273,10 @@ impl SceneBuilder {
                         ),
                     ));
                 }
-                if let Some(r) = reflectance {
+                if let Some(r) = reflectance.as_ref().and_then(RgbTexture::constant) {
                     check_unit_interval(params, "reflectance", r)?;
                 }
-                let (conductor_u_roughness, conductor_v_roughness) = prefixed_roughness(params, "conductor.")?;
+                let (conductor_u_roughness, conductor_v_roughness) = self.prefixed_roughness(params, "conductor.")?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 let slab = slab(self, params)?;
                 self.warn_unused(params);
@@ -281,8 +284,8 @@ impl SceneBuilder {
                     interface_u_roughness,
                     interface_v_roughness,
                     interface_eta,
-                    conductor_eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE)),
-                    conductor_k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK)),
+                    conductor_eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE).into()),
+                    conductor_k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK).into()),
                     reflectance,
                     conductor_u_roughness,
                     conductor_v_roughness,
@@ -313,16 +316,16 @@ impl SceneBuilder {
 
 /// The slab parameters shared by `coateddiffuse` and `coatedconductor`.
 struct Slab {
-    thickness: f32,
-    albedo: Rgb,
-    g: f32,
+    thickness: FloatTexture,
+    albedo: RgbTexture,
+    g: FloatTexture,
     max_depth: u32,
     n_samples: u32,
 }
 
 /// `float thickness` (default 0.01, >= 0), `rgb albedo` (default 0, in [0, 1]), `float g`
-/// (default 0, in [-1, 1]), `integer maxdepth` (default 10, >= 0), `integer nsamples`
-/// (default 1, >= 1).
+/// (default 0, in [-1, 1]), each also a texture (the bounds then checked on constants
+/// only), `integer maxdepth` (default 10, >= 0), `integer nsamples` (default 1, >= 1).
 fn slab(builder: &SceneBuilder, params: &ParamSet) -> Result<Slab, SceneError> {
     let bad = |name: &str, what: &str| {
         let p = params.get(name).map_or(&params.loc, |p| &p.loc);
@@ -331,16 +334,18 @@ fn slab(builder: &SceneBuilder, params: &ParamSet) -> Result<Slab, SceneError> {
             format!("\"{name}\" of {} must be {what}", params.owner),
         ))
     };
-    let thickness = params.float("thickness", 0.01)?;
-    if !(thickness >= 0.0 && thickness.is_finite()) {
+    let thickness = builder.textures.float(params, "thickness", 0.01)?;
+    if thickness.constant().is_some_and(|t| !(t >= 0.0 && t.is_finite())) {
         return bad("thickness", "a finite number >= 0");
     }
     let albedo = builder
-        .constant_spectrum_param(params, "albedo", SpectrumKind::Albedo)?
-        .unwrap_or(Rgb::BLACK);
-    check_unit_interval(params, "albedo", albedo)?;
-    let g = params.float("g", 0.0)?;
-    if !(-1.0..=1.0).contains(&g) {
+        .spectrum_param(params, "albedo", SpectrumKind::Albedo)?
+        .unwrap_or_else(|| Rgb::BLACK.into());
+    if let Some(a) = albedo.constant() {
+        check_unit_interval(params, "albedo", a)?;
+    }
+    let g = builder.textures.float(params, "g", 0.0)?;
+    if g.constant().is_some_and(|g| !(-1.0..=1.0).contains(&g)) {
         return bad("g", "between -1 and 1");
     }
     let max_depth = params.int("maxdepth", 10)?;
@@ -405,7 +410,7 @@ pub(super) fn resolve_material(
             }
             let desc = MaterialDesc::Mix {
                 materials: pair,
-                amount: *amount,
+                amount: amount.clone(),
             };
             Ok(intern_material(materials, ids, desc))
         }
@@ -512,39 +517,29 @@ impl SceneBuilder {
     }
     }
 
-    /// [`Self::spectrum_param`] for parameters that are not texturable here yet (those of
-    /// the coated materials): a texture is reported as not supported.
-    fn constant_spectrum_param(
-        &self,
-        params: &ParamSet,
-        name: &str,
-        kind: SpectrumKind,
-    ) -> Result<Option<Rgb>, SceneError> {
-        match self.spectrum_param(params, name, kind)? {
-            None => Ok(None),
-            Some(t) => t.constant().map(Some).ok_or_else(|| {
-                let loc = params.get(name).map_or(&params.loc, |p| &p.loc);
-                SceneError::unsupported(
-                    loc,
-                    format!("a texture for \"{name}\" of {} is not supported yet", params.owner),
-                )
-            }),
-        }
-    }
-
     /// `uroughness` and `vroughness` (float textures), each defaulting to `roughness`, which
     /// defaults to 0. Constant roughnesses must not be negative.
     fn roughness(&self, params: &ParamSet) -> Result<(FloatTexture, FloatTexture), SceneError> {
-        let r = self.textures.float(params, "roughness", 0.0)?;
-        let u = match params.get("uroughness") {
-            Some(_) => self.textures.float(params, "uroughness", 0.0)?,
+        self.prefixed_roughness(params, "")
+    }
+
+    /// [`Self::roughness`] with the parameter names prefixed (`interface.`, `conductor.`).
+    fn prefixed_roughness(&self, params: &ParamSet, prefix: &str) -> Result<(FloatTexture, FloatTexture), SceneError> {
+        let names = [
+            format!("{prefix}roughness"),
+            format!("{prefix}uroughness"),
+            format!("{prefix}vroughness"),
+        ];
+        let r = self.textures.float(params, &names[0], 0.0)?;
+        let u = match params.get(&names[1]) {
+            Some(_) => self.textures.float(params, &names[1], 0.0)?,
             None => r.clone(),
         };
-        let v = match params.get("vroughness") {
-            Some(_) => self.textures.float(params, "vroughness", 0.0)?,
+        let v = match params.get(&names[2]) {
+            Some(_) => self.textures.float(params, &names[2], 0.0)?,
             None => r.clone(),
         };
-        for (name, value) in [("roughness", &r), ("uroughness", &u), ("vroughness", &v)] {
+        for (name, value) in names.iter().zip([&r, &u, &v]) {
             if value.constant().is_some_and(|c| c < 0.0) {
                 let p = params.get(name).map_or(&params.loc, |p| &p.loc);
                 return Err(SceneError::invalid(
@@ -617,32 +612,6 @@ fn dielectric_eta_named(params: &ParamSet, name: &str) -> Result<f32, SceneError
         ));
     }
     Ok(if eta == 0.0 { 1.0 } else { eta })
-}
-
-/// `uroughness` and `vroughness`, each defaulting to `roughness`, which defaults to 0.
-fn roughness(params: &ParamSet) -> Result<(f32, f32), SceneError> {
-    prefixed_roughness(params, "")
-}
-
-/// [`roughness`] with the parameter names prefixed (`interface.`, `conductor.`).
-fn prefixed_roughness(params: &ParamSet, prefix: &str) -> Result<(f32, f32), SceneError> {
-    let names = [
-        format!("{prefix}roughness"),
-        format!("{prefix}uroughness"),
-        format!("{prefix}vroughness"),
-    ];
-    let r = params.float(&names[0], 0.0)?;
-    let (u, v) = (params.float(&names[1], r)?, params.float(&names[2], r)?);
-    for (name, value) in names.iter().zip([r, u, v]) {
-        if value < 0.0 {
-            let p = params.get(name).map_or(&params.loc, |p| &p.loc);
-            return Err(SceneError::invalid(
-                p,
-                format!("\"{name}\" of {} must not be negative", params.owner),
-            ));
-        }
-    }
-    Ok((u, v))
 }
 
 /// Error unless every channel of `value` (the parameter `name`) is in [0, 1].
