@@ -20,6 +20,7 @@ use crate::light::{
 use crate::material::Material;
 use crate::math::{Vec2, Vec3};
 use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, Triangle, TriangleMesh};
+use crate::texture::effective_alpha;
 
 /// Largest image side accepted.
 pub const MAX_RESOLUTION: u32 = 32_768;
@@ -579,6 +580,7 @@ impl Scene {
         let mut lights = Vec::new();
         for s in &desc.shapes {
             let shapes = shape_geometry(s);
+            let alpha = effective_alpha(s.alpha.as_ref());
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
                     let sides = if a.two_sided { 2.0 } else { 1.0 };
@@ -591,6 +593,7 @@ impl Scene {
                         shape: shape.clone(),
                         radiance,
                         two_sided: a.two_sided,
+                        alpha: alpha.clone(),
                     }));
                     (lights.len() - 1) as u32
                 });
@@ -598,6 +601,7 @@ impl Scene {
                     shape,
                     material: s.material,
                     light,
+                    alpha: alpha.clone(),
                 });
             }
         }
@@ -641,6 +645,7 @@ impl Scene {
                             shape,
                             material: s.material,
                             light: None,
+                            alpha: effective_alpha(s.alpha.as_ref()),
                         })
                     })
                     .collect();
