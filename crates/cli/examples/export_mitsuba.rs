@@ -86,7 +86,13 @@ fn main() -> Result<()> {
             GeometryDesc::Sphere {
                 radius,
                 world_from_object,
+                z_min,
+                z_max,
+                phi_max,
             } => {
+                if *z_min > -radius || *z_max < *radius || *phi_max < 360.0 {
+                    bail!("shape {i}: partial spheres are not exported yet");
+                }
                 let c = world_from_object.point(Vec3::ZERO);
                 let scale = world_from_object.vector(Vec3::X).length();
                 format!(

@@ -133,10 +133,7 @@ fn ignored_hits_continue_to_the_back_of_a_sphere() {
     // Camera rays cross both surfaces of a half-transparent sphere: 1/4 gets through.
     let (mut d, expected) = lit_receiver();
     d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::Sphere {
-            radius: 0.05,
-            world_from_object: Transform::new(Mat4::from_translation(CAMERA_MIDPOINT)).unwrap(),
-        },
+        geometry: GeometryDesc::full_sphere(0.05, Transform::new(Mat4::from_translation(CAMERA_MIDPOINT)).unwrap()),
         material: 0,
         area_light: None,
         flip_normals: false,

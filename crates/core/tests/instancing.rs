@@ -34,10 +34,10 @@ fn object_shapes() -> Vec<ShapeDesc> {
             alpha: None,
         },
         ShapeDesc {
-            geometry: GeometryDesc::Sphere {
-                radius: 0.3,
-                world_from_object: Transform::new(Mat4::from_translation(Vec3::new(0.0, 0.8, 0.0))).unwrap(),
-            },
+            geometry: GeometryDesc::full_sphere(
+                0.3,
+                Transform::new(Mat4::from_translation(Vec3::new(0.0, 0.8, 0.0))).unwrap(),
+            ),
             material: 2,
             area_light: None,
             flip_normals: false,
@@ -139,9 +139,15 @@ fn flattened() -> SceneDescription {
                 GeometryDesc::Sphere {
                     radius,
                     world_from_object,
+                    z_min,
+                    z_max,
+                    phi_max,
                 } => GeometryDesc::Sphere {
                     radius,
                     world_from_object: Transform::new(t.m * world_from_object.m).unwrap(),
+                    z_min,
+                    z_max,
+                    phi_max,
                 },
                 other => other,
             };

@@ -145,10 +145,7 @@ fn mixes_reflect_the_mixture_of_their_materials() {
 /// An `interface` sphere of radius `r` at `centre`, using material `m`.
 fn interface_sphere(m: u32, r: f32, centre: Vec3) -> ShapeDesc {
     ShapeDesc {
-        geometry: GeometryDesc::Sphere {
-            radius: r,
-            world_from_object: Transform::new(Mat4::from_translation(centre)).unwrap(),
-        },
+        geometry: GeometryDesc::full_sphere(r, Transform::new(Mat4::from_translation(centre)).unwrap()),
         material: m,
         area_light: None,
         flip_normals: false,

@@ -95,6 +95,29 @@ fn disk_parameters_and_defaults() {
 /// A planar patch becomes two triangles over its four corners, facing pbrt-v4's
 /// `dpdu x dpdv`, with the patch's (u, v) at the corners when no `uv` is given.
 #[test]
+fn sphere_cuts_are_read_and_clamped_as_pbrt_does() {
+    let s = load(
+        "WorldBegin\nShape \"sphere\" \"float radius\" 2 \"float zmin\" 1.5 \"float zmax\" -5 \"float phimax\" 400",
+    );
+    let GeometryDesc::Sphere {
+        radius,
+        z_min,
+        z_max,
+        phi_max,
+        ..
+    } = s.description.shapes[0].geometry
+    else {
+        panic!()
+    };
+    assert_eq!((radius, z_min, z_max, phi_max), (2.0, -2.0, 1.5, 360.0));
+    assert!(s.warnings.iter().all(|w| !w.contains("zmin")), "{:?}", s.warnings);
+    assert_eq!(
+        load_err("WorldBegin\nShape \"sphere\" \"float zmin\" 0.5 \"float zmax\" 0.5"),
+        "scene.pbrt:2:16: sphere cut zmin 0.5, zmax 0.5, phimax 360 leaves nothing of a sphere of radius 1"
+    );
+}
+
+#[test]
 fn planar_bilinear_patches_split_into_triangles() {
     let s = load(
         "WorldBegin\nTranslate 0 0 2\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  2 0 0  0 1 0  2 1 0  4 0 0  4 1 0] \
@@ -526,7 +549,8 @@ fn unused_parameters_warn_with_their_location() {
         "{:?}",
         s.warnings
     );
-    assert!(s.warnings.iter().any(|w| w.starts_with("scene.pbrt:3:17: warning: parameter \"float zmax\" of Shape \"sphere\" is not supported yet; rendering the full sphere")), "{:?}", s.warnings);
+    // zmax is read (a cut sphere), so it is not warned about.
+    assert!(s.warnings.iter().all(|w| !w.contains("zmax")), "{:?}", s.warnings);
 }
 
 #[test]

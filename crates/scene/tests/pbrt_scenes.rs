@@ -259,6 +259,7 @@ fn veach_mis_geometry_loads_once_its_materials_are_diffuse() {
             GeometryDesc::Sphere {
                 radius,
                 world_from_object,
+                ..
             } => Some((radius, world_from_object, s.area_light)),
             _ => None,
         })

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use super::*;
 use crate::math::{Mat4, Ray, Transform, PI};
 use crate::sampling::chi2::{suite_seed, Chi2Test, SphereGrid, SIGNIFICANCE};
-use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, Triangle, TriangleMesh};
+use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 
 fn check_light(light: &DiffuseAreaLight, receiver: Vec3, label: &str) {
     let recv = Interaction::point(receiver);
@@ -66,6 +66,32 @@ fn sphere_light_sampling_matches_its_solid_angle_pdf() {
         alpha: None,
     };
     check_light(&light, Vec3::new(0.2, -0.1, 2.3), "sphere");
+}
+
+/// A cut sphere (zmin, zmax, phimax): sampled over its own part only, and its pdf reached
+/// through its own (cut) intersection; with a non-uniform scale too.
+#[test]
+fn partial_sphere_light_sampling_matches_its_solid_angle_pdf() {
+    let clip = SphereClip {
+        z_min: -0.3,
+        z_max: 0.8,
+        phi_max: 250f32.to_radians(),
+    };
+    for (m, label) in [
+        (Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0)), "partial sphere"),
+        (
+            Mat4::from_translation(Vec3::new(0.5, 0.0, 2.0)) * Mat4::from_scale(Vec3::new(1.2, 0.5, 0.8)),
+            "scaled partial sphere",
+        ),
+    ] {
+        let light = DiffuseAreaLight {
+            shape: Shape::Sphere(Sphere::partial(1.0, clip, Transform::new(m).unwrap(), true)),
+            radiance: Rgb::WHITE,
+            two_sided: false,
+            alpha: None,
+        };
+        check_light(&light, m.transform_point3(Vec3::new(0.1, -0.1, 0.2)), label);
+    }
 }
 
 #[test]

@@ -19,7 +19,7 @@ use crate::light::{
 };
 use crate::material::Material;
 use crate::math::{Vec2, Vec3};
-use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, Triangle, TriangleMesh};
+use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 use crate::texture::effective_alpha;
 
 /// Largest image side accepted.
@@ -279,11 +279,24 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
             GeometryDesc::Sphere {
                 radius,
                 world_from_object,
+                z_min,
+                z_max,
+                phi_max,
             } => {
                 if !(*radius > 0.0 && radius.is_finite()) {
                     return Err(invalid(
                         format!("sphere (shape {i})"),
                         format!("expected radius > 0, found {radius}"),
+                    ));
+                }
+                check_finite("sphere zmin, zmax, phimax", &[*z_min, *z_max, *phi_max])?;
+                let (lo, hi) = (z_min.min(*z_max).max(-radius), z_min.max(*z_max).min(*radius));
+                if lo >= hi || *phi_max <= 0.0 {
+                    return Err(invalid(
+                        format!("sphere (shape {i})"),
+                        format!(
+                            "the cut zmin {z_min}, zmax {z_max}, phimax {phi_max} leaves nothing of a sphere of radius {radius}"
+                        ),
                     ));
                 }
                 check_finite("sphere transform", &world_from_object.m.to_cols_array())?;
@@ -398,8 +411,21 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
         GeometryDesc::Sphere {
             radius,
             world_from_object,
+            z_min,
+            z_max,
+            phi_max,
         } => {
-            vec![Shape::Sphere(Sphere::new(*radius, *world_from_object, s.flip_normals))]
+            let clip = SphereClip {
+                z_min: *z_min,
+                z_max: *z_max,
+                phi_max: phi_max.to_radians(),
+            };
+            vec![Shape::Sphere(Sphere::partial(
+                *radius,
+                clip,
+                *world_from_object,
+                s.flip_normals,
+            ))]
         }
         GeometryDesc::Disk {
             height,

@@ -453,6 +453,12 @@ pub enum GeometryDesc {
         radius: f32,
         /// World-from-object transform.
         world_from_object: Transform,
+        /// Lowest height kept (pbrt `zmin`; `-radius` or below for no cut).
+        z_min: f32,
+        /// Highest height kept (pbrt `zmax`; `radius` or above for no cut).
+        z_max: f32,
+        /// Largest azimuth kept, in degrees (pbrt `phimax`; 360 for no cut).
+        phi_max: f32,
     },
     /// A disk in the plane `z = height` of its object space, centred on the z axis, with an
     /// optional hole and an angular extent (pbrt-v4 `disk`). Its normal is object-space `+z`.
@@ -468,6 +474,20 @@ pub enum GeometryDesc {
         /// World-from-object transform.
         world_from_object: Transform,
     },
+}
+
+impl GeometryDesc {
+    /// A whole sphere (no `zmin`/`zmax`/`phimax` cut).
+    #[must_use]
+    pub fn full_sphere(radius: f32, world_from_object: Transform) -> Self {
+        Self::Sphere {
+            radius,
+            world_from_object,
+            z_min: -radius,
+            z_max: radius,
+            phi_max: 360.0,
+        }
+    }
 }
 
 /// A triangle mesh in world space.

@@ -12,7 +12,7 @@ pub use bilinear::BilinearPatch;
 pub use disk::Disk;
 pub use interaction::{Interaction, SurfaceInteraction};
 pub use mesh::{BilinearMesh, TriangleMesh};
-pub use sphere::Sphere;
+pub use sphere::{Sphere, SphereClip};
 pub use triangle::Triangle;
 
 use crate::math::{Bounds3, Ray, Vec2};

@@ -44,10 +44,7 @@ pub fn inside_sphere_scene(
     });
     d.camera.fov_degrees = 60.0;
     d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::Sphere {
-            radius,
-            world_from_object: Transform::IDENTITY,
-        },
+        geometry: GeometryDesc::full_sphere(radius, Transform::IDENTITY),
         material: 1,
         area_light: emission,
         flip_normals: inward,
@@ -109,11 +106,10 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
 /// A sphere light of radius `r` at `centre`.
 pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) {
     d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::Sphere {
-            radius: 1.0,
-            world_from_object: Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r)))
-                .unwrap(),
-        },
+        geometry: GeometryDesc::full_sphere(
+            1.0,
+            Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r))).unwrap(),
+        ),
         material: 0,
         area_light: Some(AreaLightDesc {
             radiance: l,

@@ -237,23 +237,27 @@ impl SceneBuilder {
                 format!("sphere radius must be positive, found {radius}"),
             ));
         }
-        let partial = [
-            ("zmin", params.float("zmin", -radius)? > -radius),
-            ("zmax", params.float("zmax", radius)? < radius),
-            ("phimax", params.float("phimax", 360.0)? < 360.0),
-        ];
-        for (name, cuts) in partial {
-            if let Some(p) = params.get(name).filter(|_| cuts) {
-                let (ploc, decl) = (p.loc.clone(), p.decl());
-                self.warn(
-                    &ploc,
-                    format!("parameter \"{decl}\" of Shape \"sphere\" is not supported yet; rendering the full sphere"),
-                );
-            }
+        // pbrt-v4: zmin and zmax are clamped to [-radius, radius] (either order), phimax to
+        // [0, 360] degrees.
+        let (z0, z1) = (params.float("zmin", -radius)?, params.float("zmax", radius)?);
+        let (z_min, z_max) = (z0.min(z1).clamp(-radius, radius), z0.max(z1).clamp(-radius, radius));
+        let phi_max = params.float("phimax", 360.0)?.clamp(0.0, 360.0);
+        if z_min >= z_max || phi_max <= 0.0 {
+            let name = if phi_max <= 0.0 { "phimax" } else { "zmin" };
+            let loc = params.get(name).or(params.get("zmax")).map_or(&params.loc, |p| &p.loc);
+            return Err(SceneError::invalid(
+                loc,
+                format!(
+                    "sphere cut zmin {z0}, zmax {z1}, phimax {phi_max} leaves nothing of a sphere of radius {radius}"
+                ),
+            ));
         }
         Ok(GeometryDesc::Sphere {
             radius,
             world_from_object,
+            z_min,
+            z_max,
+            phi_max,
         })
     }
 }
