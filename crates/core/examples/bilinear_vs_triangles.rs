@@ -31,6 +31,7 @@ fn scene(geometry: GeometryDesc) -> Scene {
             material: 0,
             area_light: None,
             flip_normals: false,
+            alpha: None,
         }],
         lights: vec![],
         objects: vec![],

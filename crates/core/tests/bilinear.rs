@@ -14,6 +14,7 @@ fn patch_shape(m: BilinearMeshDesc) -> ShapeDesc {
         material: 0,
         area_light: None,
         flip_normals: false,
+        alpha: None,
     }
 }
 

@@ -31,6 +31,7 @@ fn object_shapes() -> Vec<ShapeDesc> {
             material: 1,
             area_light: None,
             flip_normals: false,
+            alpha: None,
         },
         ShapeDesc {
             geometry: GeometryDesc::full_sphere(
@@ -40,6 +41,7 @@ fn object_shapes() -> Vec<ShapeDesc> {
             material: 2,
             area_light: None,
             flip_normals: false,
+            alpha: None,
         },
     ]
 }
@@ -93,6 +95,7 @@ fn base_scene() -> SceneDescription {
         material: 1,
         area_light: None,
         flip_normals: false,
+        alpha: None,
     });
     d.shapes.push(ShapeDesc {
         geometry: quad(3.0, 2.0, true),
@@ -103,6 +106,7 @@ fn base_scene() -> SceneDescription {
             power: None,
         }),
         flip_normals: false,
+        alpha: None,
     });
     d
 }

@@ -149,6 +149,7 @@ fn interface_sphere(m: u32, r: f32, centre: Vec3) -> ShapeDesc {
         material: m,
         area_light: None,
         flip_normals: false,
+        alpha: None,
     }
 }
 

@@ -1,11 +1,21 @@
 //! Uniform emission from a shape's surface (pbrt `AreaLightSource "diffuse"`). Sampled by
 //! choosing a point uniformly by area and converting to solid angle at the receiver:
 //! `p_omega = p_A r^2 / |cos theta_l|`.
+//!
+//! A shape with an alpha texture emits nowhere it is cut out: a sampled point is dropped
+//! by pbrt-v4's `DiffuseAreaLight::AlphaMasked` (never where alpha `<= 0`, with probability
+//! `1 - a` by a hash of the point where `0 < a < 1`). Rays that hit the shape have already
+//! passed the same alpha test in the intersection (see `scene::Primitive::intersect`), so
+//! [`DiffuseAreaLight::l`] does not test again: pbrt-v4 does, which counts a fractional
+//! alpha twice (`a^2`) for emission found by rays but once for light samples; testing once
+//! keeps both strategies estimating the same `a L`.
 
 use super::LightLiSample;
 use crate::color::Rgb;
 use crate::math::{Vec2, Vec3, PI};
+use crate::sampling::hash_float;
 use crate::shape::{Interaction, Shape};
+use crate::texture::{alpha_keeps, FloatTexture, TextureContext};
 
 /// An emitting shape.
 #[derive(Clone, Debug)]
@@ -16,6 +26,8 @@ pub struct DiffuseAreaLight {
     pub radiance: Rgb,
     /// Emit on both sides instead of only along the normal.
     pub two_sided: bool,
+    /// The shape's alpha cut-out, `None` when opaque.
+    pub alpha: Option<FloatTexture>,
 }
 
 impl DiffuseAreaLight {
@@ -30,10 +42,27 @@ impl DiffuseAreaLight {
         }
     }
 
-    /// Sample a point on the surface by area.
+    /// True when the alpha test removes the surface point `p` with parameters `uv`
+    /// (pbrt-v4 `AlphaMasked`: the hash is of the point).
+    #[must_use]
+    pub fn alpha_masked(&self, p: Vec3, uv: Vec2) -> bool {
+        self.alpha.as_ref().is_some_and(|alpha| {
+            let ctx = TextureContext {
+                p,
+                uv,
+                ..TextureContext::default()
+            };
+            !alpha_keeps(alpha.evaluate(&ctx), || hash_float(&[p.x, p.y, p.z]))
+        })
+    }
+
+    /// Sample a point on the surface by area; `None` where the alpha test removes it.
     #[must_use]
     pub fn sample_li(&self, receiver: &Interaction, u: Vec2) -> Option<LightLiSample> {
         let ss = self.shape.sample_area(u);
+        if self.alpha_masked(ss.intr.p, ss.uv) {
+            return None;
+        }
         let d = ss.intr.p - receiver.p;
         let r2 = d.length_squared();
         let wi = d.try_normalize()?;

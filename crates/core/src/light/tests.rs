@@ -46,6 +46,7 @@ fn triangle_light_sampling_matches_its_solid_angle_pdf() {
         shape: Shape::Triangle(Triangle::new(mesh, 0)),
         radiance: Rgb::WHITE,
         two_sided: true,
+        alpha: None,
     };
     check_light(&light, Vec3::new(0.1, -0.3, 0.2), "triangle");
 }
@@ -62,6 +63,7 @@ fn sphere_light_sampling_matches_its_solid_angle_pdf() {
         shape: Shape::Sphere(Sphere::new(1.0, t, true)),
         radiance: Rgb::WHITE,
         two_sided: false,
+        alpha: None,
     };
     check_light(&light, Vec3::new(0.2, -0.1, 2.3), "sphere");
 }
@@ -86,6 +88,7 @@ fn partial_sphere_light_sampling_matches_its_solid_angle_pdf() {
             shape: Shape::Sphere(Sphere::partial(1.0, clip, Transform::new(m).unwrap(), true)),
             radiance: Rgb::WHITE,
             two_sided: false,
+            alpha: None,
         };
         check_light(&light, m.transform_point3(Vec3::new(0.1, -0.1, 0.2)), label);
     }
@@ -100,6 +103,7 @@ fn scaled_sphere_light_sampling_matches_its_solid_angle_pdf() {
         shape: Shape::Sphere(Sphere::new(1.0, Transform::new(m).unwrap(), true)),
         radiance: Rgb::WHITE,
         two_sided: false,
+        alpha: None,
     };
     check_light(&light, Vec3::new(0.6, 0.1, 2.2), "scaled sphere");
 }
@@ -115,6 +119,7 @@ fn disk_light_sampling_matches_its_solid_angle_pdf() {
         shape: Shape::Disk(Disk::new(0.0, 1.0, 0.0, 2.0 * PI, Transform::new(m).unwrap(), true)),
         radiance: Rgb::WHITE,
         two_sided: false,
+        alpha: None,
     };
     check_light(&light, Vec3::new(0.3, -0.2, 0.2), "disk");
 }
@@ -127,6 +132,7 @@ fn annulus_sector_light_sampling_matches_its_solid_angle_pdf() {
         shape: Shape::Disk(Disk::new(0.1, 1.2, 0.4, 1.25 * PI, Transform::new(m).unwrap(), false)),
         radiance: Rgb::WHITE,
         two_sided: true,
+        alpha: None,
     };
     check_light(&light, Vec3::new(0.1, 0.2, 0.0), "annulus sector");
 }
@@ -149,6 +155,7 @@ fn saddle_light(two_sided: bool) -> DiffuseAreaLight {
         shape: Shape::Bilinear(BilinearPatch::new(Arc::new(mesh), 0)),
         radiance: Rgb::new(1.0, 2.0, 0.5),
         two_sided,
+        alpha: None,
     }
 }
 

@@ -28,6 +28,20 @@ pub fn hash_u64s(values: &[u64]) -> u64 {
     h
 }
 
+/// A uniform value in `[0, 1)` hashed from the bit patterns of `values` (pbrt-v4
+/// `HashFloat`): the top 24 bits of [`hash_u64s`], so it is exactly representable and below
+/// 1. Deterministic: the same floats always give the same value.
+#[inline]
+#[must_use]
+pub fn hash_float(values: &[f32]) -> f32 {
+    let mut bits = [0u64; 8];
+    let n = values.len().min(bits.len());
+    for (b, v) in bits.iter_mut().zip(values) {
+        *b = u64::from(v.to_bits());
+    }
+    (hash_u64s(&bits[..n]) >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -62,5 +76,20 @@ mod tests {
         assert_ne!(hash_u64s(&[1, 2]), hash_u64s(&[2, 1]));
         assert_ne!(hash_u64s(&[0]), hash_u64s(&[0, 0]));
         assert_ne!(hash_u64s(&[]), hash_u64s(&[0]));
+    }
+
+    #[test]
+    fn hash_float_is_uniform_in_unit_interval() {
+        // Mean 1/2 and a quarter of the values below 1/4 over nearby inputs.
+        let n = 100_000;
+        let (mut sum, mut low) = (0.0f64, 0u32);
+        for i in 0..n {
+            let u = hash_float(&[i as f32 * 1e-3, 0.5, -2.0]);
+            assert!((0.0..1.0).contains(&u));
+            sum += f64::from(u);
+            low += u32::from(u < 0.25);
+        }
+        assert!((sum / f64::from(n) - 0.5).abs() < 0.005);
+        assert!((f64::from(low) / f64::from(n) - 0.25).abs() < 0.005);
     }
 }

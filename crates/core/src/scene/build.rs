@@ -19,6 +19,7 @@ use crate::light::{
 use crate::material::Material;
 use crate::math::{Vec2, Vec3};
 use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
+use crate::texture::effective_alpha;
 
 /// Largest image side accepted.
 pub const MAX_RESOLUTION: u32 = 32_768;
@@ -615,6 +616,7 @@ impl Scene {
         let mut lights = Vec::new();
         for s in &desc.shapes {
             let shapes = shape_geometry(s);
+            let alpha = effective_alpha(s.alpha.as_ref());
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
                     let sides = if a.two_sided { 2.0 } else { 1.0 };
@@ -627,6 +629,7 @@ impl Scene {
                         shape: shape.clone(),
                         radiance,
                         two_sided: a.two_sided,
+                        alpha: alpha.clone(),
                     }));
                     (lights.len() - 1) as u32
                 });
@@ -634,6 +637,7 @@ impl Scene {
                     shape,
                     material: s.material,
                     light,
+                    alpha: alpha.clone(),
                 });
             }
         }
@@ -677,6 +681,7 @@ impl Scene {
                             shape,
                             material: s.material,
                             light: None,
+                            alpha: effective_alpha(s.alpha.as_ref()),
                         })
                     })
                     .collect();

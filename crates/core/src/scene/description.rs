@@ -432,6 +432,10 @@ pub struct ShapeDesc {
     /// Flip the surface normal: pbrt's `ReverseOrientation` xor "the transform swaps
     /// handedness". Decides on which side a one-sided area light emits.
     pub flip_normals: bool,
+    /// Alpha cut-out (pbrt `"float alpha"` / `"texture alpha"`): where it is `<= 0` the
+    /// shape is absent, where it is in `(0, 1)` present with that probability per ray;
+    /// `None` (or a constant `>= 1`) is opaque, with no test at all.
+    pub alpha: Option<FloatTexture>,
 }
 
 /// Geometry of a shape.

@@ -85,7 +85,6 @@ impl Instance {
         let local = self.local_ray(ray);
         let (prim, (hit, ())) = self.object.bvh.closest_hit(&local, t_max, |i, r, t| {
             self.object.primitives[i as usize]
-                .shape
                 .intersect(r, t)
                 .map(|h| (h.t, (h, ())))
         })?;
@@ -99,7 +98,7 @@ impl Instance {
         let local = self.local_ray(ray);
         self.object.bvh.any_hit(&local, t_max, |i, r, t| {
             let p = &self.object.primitives[i as usize];
-            blocks(p) && p.shape.intersect(r, t).is_some()
+            blocks(p) && p.intersect(r, t).is_some()
         })
     }
 

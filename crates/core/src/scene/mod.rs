@@ -8,6 +8,7 @@
 //! found through them in full; its `VolPathIntegrator`, for which interfaces exist, lets
 //! its shadow rays through as we do).
 
+mod alpha;
 mod build;
 mod description;
 mod instance;
@@ -35,6 +36,8 @@ pub struct Primitive {
     pub material: u32,
     /// Index into [`Scene::lights`] when the shape emits.
     pub light: Option<u32>,
+    /// Alpha cut-out texture; `None` for an opaque shape (see [`Primitive::intersect`]).
+    pub alpha: Option<FloatTexture>,
 }
 
 /// The closest hit of a ray: the surface interaction and what was hit.
@@ -84,10 +87,7 @@ impl Scene {
         let n = self.primitives.len() as u32;
         let (index, (shape_hit, prim)) = self.bvh.closest_hit(ray, f32::INFINITY, |i, r, t_max| {
             if i < n {
-                self.primitives[i as usize]
-                    .shape
-                    .intersect(r, t_max)
-                    .map(|h| (h.t, (h, 0)))
+                self.primitives[i as usize].intersect(r, t_max).map(|h| (h.t, (h, 0)))
             } else {
                 self.instances[(i - n) as usize]
                     .intersect(r, t_max)
@@ -108,7 +108,8 @@ impl Scene {
         }
     }
 
-    /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces do not.
+    /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces and
+    /// alpha cut-outs do not.
     #[must_use]
     pub fn unoccluded_ray(&self, ray: &Ray, t_max: f32) -> bool {
         let n = self.primitives.len() as u32;
@@ -117,7 +118,7 @@ impl Scene {
         !self.bvh.any_hit(ray, t_max, |i, r, t| {
             if i < n {
                 let p = &self.primitives[i as usize];
-                blocks(p) && p.shape.intersect(r, t).is_some()
+                blocks(p) && p.intersect(r, t).is_some()
             } else {
                 self.instances[(i - n) as usize].any_hit(r, t, blocks)
             }

@@ -313,9 +313,11 @@ impl BilinearPatch {
         } else {
             0.0
         };
+        let si = self.interaction_at(uv, Vec3::ZERO, 0.0);
         ShapeSample {
-            intr: self.interaction_at(uv, Vec3::ZERO, 0.0).intr,
+            intr: si.intr,
             pdf_area,
+            uv: si.uv,
         }
     }
 

@@ -170,6 +170,7 @@ impl Disk {
         ShapeSample {
             intr: si.intr,
             pdf_area: 1.0 / self.area(),
+            uv: si.uv,
         }
     }
 

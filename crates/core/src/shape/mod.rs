@@ -24,6 +24,9 @@ pub struct ShapeSample {
     pub intr: Interaction,
     /// Density per unit area (world space) of having sampled this point.
     pub pdf_area: f32,
+    /// Surface parameterisation at the point (as [`SurfaceInteraction::uv`]), for
+    /// textures such as an area light's alpha.
+    pub uv: Vec2,
 }
 
 /// The result of a ray-shape test: distance and the shape-specific data needed to build a

@@ -260,6 +260,7 @@ impl Sphere {
         ShapeSample {
             intr: si.intr,
             pdf_area: pdf_obj / self.area_jacobian(n_obj),
+            uv: si.uv,
         }
     }
 

@@ -222,6 +222,7 @@ impl Triangle {
         ShapeSample {
             intr: si.intr,
             pdf_area: 1.0 / self.area(),
+            uv: si.uv,
         }
     }
 

@@ -8,6 +8,7 @@
 //! (MIP-mapped; point, bilinear, trilinear or EWA lookups; see [`mipmap`]). Mappings: uv,
 //! spherical, cylindrical, planar ([`TextureMapping`]).
 
+mod alpha;
 mod checkerboard;
 mod context;
 mod image;
@@ -22,6 +23,7 @@ use std::fmt::Debug;
 use std::ops::{Add, Mul};
 use std::sync::Arc;
 
+pub use alpha::{alpha_keeps, effective_alpha};
 pub use checkerboard::{checkerboard_weight, CheckerboardTexture};
 pub use context::TextureContext;
 pub use image::ImageTexture;

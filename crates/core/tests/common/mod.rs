@@ -48,6 +48,7 @@ pub fn inside_sphere_scene(
         material: 1,
         area_light: emission,
         flip_normals: inward,
+        alpha: None,
     });
     d
 }
@@ -73,6 +74,7 @@ pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
         material: (d.materials.len() - 1) as u32,
         area_light: None,
         flip_normals: false,
+        alpha: None,
     });
 }
 
@@ -97,6 +99,7 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
             power: None,
         }),
         flip_normals: false,
+        alpha: None,
     });
 }
 
@@ -114,6 +117,7 @@ pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) 
             power: None,
         }),
         flip_normals: false,
+        alpha: None,
     });
 }
 
@@ -138,6 +142,7 @@ pub fn add_disk_light(d: &mut SceneDescription, r: f32, h: f32, l: Rgb) {
             power: None,
         }),
         flip_normals: false,
+        alpha: None,
     });
 }
 

@@ -2,11 +2,12 @@
 //! meshes as triangle pairs, others as bilinear patches). Meshes are moved to world space
 //! here (points by the CTM, normals by its inverse transpose, negated under
 //! `ReverseOrientation` as pbrt does, then normalised); spheres and disks keep their
-//! transform.
+//! transform. Every shape takes an alpha cut-out (`"float alpha"` or `"texture alpha"`).
 
 use glam::{Vec2, Vec3};
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{BilinearMeshDesc, GeometryDesc, ShapeDesc, TriangleMeshDesc};
+use mcrender_core::texture::effective_alpha;
 
 use super::builder::SceneBuilder;
 use super::params::{ParamSet, ParamType};
@@ -61,7 +62,11 @@ impl SceneBuilder {
             "disk" => disk(params, world_from_object)?,
             _ => self.sphere(params, world_from_object)?,
         };
-        for name in ["alpha", "displacement", "emissionfilename"] {
+        // pbrt-v4 `scene.cpp`: a `texture alpha`, else a `float alpha` below 1; opaque
+        // shapes get no alpha test at all.
+        let alpha = self.textures.float(params, "alpha", 1.0)?;
+        let alpha = effective_alpha(Some(&alpha));
+        for name in ["displacement", "emissionfilename"] {
             if let Some(p) = params.get(name) {
                 p.mark_used();
                 self.warn(
@@ -81,6 +86,7 @@ impl SceneBuilder {
             material: 0,
             area_light: self.state.area_light,
             flip_normals,
+            alpha,
         };
         self.add_shape(shape, loc)
     }
