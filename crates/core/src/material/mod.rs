@@ -1,6 +1,6 @@
-//! Layer 3: materials turn a surface interaction into a BSDF. A [`Material`] holds its
-//! parameters as textures ([`crate::texture`]), evaluated at each hit's
-//! [`TextureContext`]; [`Material::from_desc`] copies them from the description and
+//! Layer 3: materials turn a surface interaction into a BSDF. A [`Material`] is its
+//! description ([`MaterialDesc`]), whose parameters are textures ([`crate::texture`])
+//! evaluated at each hit's [`TextureContext`]; [`Material::from_desc`] copies it and
 //! [`Material::bsdf`] resolves them (alphas from roughness, conductor indices from a
 //! reflectance) per hit. Constant textures give the same BSDF at every hit.
 //!
@@ -20,120 +20,11 @@ use crate::color::Rgb;
 use crate::sampling::hash_u64s;
 use crate::scene::MaterialDesc;
 use crate::shape::SurfaceInteraction;
-use crate::texture::{FloatTexture, RgbTexture, TextureContext};
+use crate::texture::{RgbTexture, TextureContext};
 
-/// The closed set of materials.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Material {
-    /// Lambertian reflection.
-    Diffuse {
-        /// Albedo (clamped to [0, 1] per hit).
-        reflectance: RgbTexture,
-    },
-    /// Smooth or rough conductor.
-    Conductor {
-        /// Real part of the index of refraction.
-        eta: RgbTexture,
-        /// Imaginary part.
-        k: RgbTexture,
-        /// When given, replaces `eta` and `k` (see [`MaterialDesc::Conductor`]).
-        reflectance: Option<RgbTexture>,
-        /// Roughness along `dpdu`.
-        u_roughness: FloatTexture,
-        /// Roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// Map roughness to alpha by `sqrt`.
-        remap_roughness: bool,
-    },
-    /// Smooth or rough dielectric interface.
-    Dielectric {
-        /// Relative index of refraction, inside over outside.
-        eta: f32,
-        /// Roughness along `dpdu`.
-        u_roughness: FloatTexture,
-        /// Roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// Map roughness to alpha by `sqrt`.
-        remap_roughness: bool,
-    },
-    /// Thin dielectric slab.
-    ThinDielectric {
-        /// Index of refraction.
-        eta: f32,
-    },
-    /// Lambertian reflection and transmission.
-    DiffuseTransmission {
-        /// Reflectance (times `scale`, clamped to [0, 1] per hit).
-        reflectance: RgbTexture,
-        /// Transmittance (times `scale`, clamped to [0, 1] per hit).
-        transmittance: RgbTexture,
-        /// Factor on both.
-        scale: f32,
-    },
-    /// A dielectric coat over a Lambertian base (see [`MaterialDesc::CoatedDiffuse`]).
-    CoatedDiffuse {
-        /// Albedo of the base (clamped to [0, 1] per hit).
-        reflectance: RgbTexture,
-        /// Coat roughness along `dpdu`.
-        u_roughness: FloatTexture,
-        /// Coat roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// Map roughness to alpha by `sqrt`.
-        remap_roughness: bool,
-        /// Slab thickness (at least the smallest normal `f32` per hit).
-        thickness: FloatTexture,
-        /// Index of refraction of the coat; 0 means 1.
-        eta: f32,
-        /// Single-scattering albedo of the slab (clamped to [0, 1] per hit).
-        albedo: RgbTexture,
-        /// Henyey-Greenstein asymmetry (clamped to [-0.999, 0.999] per hit).
-        g: FloatTexture,
-        /// Maximum scattering events of a walk.
-        max_depth: u32,
-        /// Walks per evaluation (at least 1).
-        n_samples: u32,
-    },
-    /// A dielectric coat over a conductor (see [`MaterialDesc::CoatedConductor`]).
-    CoatedConductor {
-        /// Coat roughness along `dpdu`.
-        interface_u_roughness: FloatTexture,
-        /// Coat roughness along the bitangent.
-        interface_v_roughness: FloatTexture,
-        /// Index of refraction of the coat; 0 means 1.
-        interface_eta: f32,
-        /// Real part of the conductor's index, relative to vacuum.
-        conductor_eta: RgbTexture,
-        /// Imaginary part, relative to vacuum.
-        conductor_k: RgbTexture,
-        /// When given, replaces `conductor_eta` and `conductor_k`.
-        reflectance: Option<RgbTexture>,
-        /// Conductor roughness along `dpdu`.
-        conductor_u_roughness: FloatTexture,
-        /// Conductor roughness along the bitangent.
-        conductor_v_roughness: FloatTexture,
-        /// Map both roughnesses to alpha by `sqrt`.
-        remap_roughness: bool,
-        /// Slab thickness (at least the smallest normal `f32` per hit).
-        thickness: FloatTexture,
-        /// Single-scattering albedo of the slab (clamped to [0, 1] per hit).
-        albedo: RgbTexture,
-        /// Henyey-Greenstein asymmetry (clamped to [-0.999, 0.999] per hit).
-        g: FloatTexture,
-        /// Maximum scattering events of a walk.
-        max_depth: u32,
-        /// Walks per evaluation (at least 1).
-        n_samples: u32,
-    },
-    /// One of two materials per shading point.
-    Mix {
-        /// Indices into the scene's materials.
-        materials: [u32; 2],
-        /// Probability of choosing the second.
-        amount: FloatTexture,
-    },
-    /// No surface: rays pass through.
-    Interface,
-}
+/// A material: its description, whose parameters are textures that [`Material::bsdf`]
+/// evaluates per hit, so building one is a copy (see [`MaterialDesc`] for the variants).
+pub type Material = MaterialDesc;
 
 /// The largest `|g|` a slab keeps: pbrt clamps `g` to [-1, 1], but the Henyey-Greenstein
 /// formula is 0/0 at the ends (a Dirac delta), so we stop just short of them.
@@ -157,104 +48,10 @@ fn alpha(roughness: f32, remap: bool) -> f32 {
 }
 
 impl Material {
-    /// The material a (validated) description asks for.
+    /// The material a (validated) description asks for: the description itself.
     #[must_use]
     pub fn from_desc(desc: &MaterialDesc) -> Self {
-        match desc.clone() {
-            MaterialDesc::Diffuse { reflectance } => Self::Diffuse { reflectance },
-            MaterialDesc::Conductor {
-                eta,
-                k,
-                reflectance,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-            } => Self::Conductor {
-                eta,
-                k,
-                reflectance,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-            },
-            MaterialDesc::Dielectric {
-                eta,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-            } => Self::Dielectric {
-                eta,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-            },
-            MaterialDesc::ThinDielectric { eta } => Self::ThinDielectric { eta },
-            MaterialDesc::DiffuseTransmission {
-                reflectance,
-                transmittance,
-                scale,
-            } => Self::DiffuseTransmission {
-                reflectance,
-                transmittance,
-                scale,
-            },
-            MaterialDesc::CoatedDiffuse {
-                reflectance,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-                thickness,
-                eta,
-                albedo,
-                g,
-                max_depth,
-                n_samples,
-            } => Self::CoatedDiffuse {
-                reflectance,
-                u_roughness,
-                v_roughness,
-                remap_roughness,
-                thickness,
-                eta,
-                albedo,
-                g,
-                max_depth,
-                n_samples,
-            },
-            MaterialDesc::CoatedConductor {
-                interface_u_roughness,
-                interface_v_roughness,
-                interface_eta,
-                conductor_eta,
-                conductor_k,
-                reflectance,
-                conductor_u_roughness,
-                conductor_v_roughness,
-                remap_roughness,
-                thickness,
-                albedo,
-                g,
-                max_depth,
-                n_samples,
-            } => Self::CoatedConductor {
-                interface_u_roughness,
-                interface_v_roughness,
-                interface_eta,
-                conductor_eta,
-                conductor_k,
-                reflectance,
-                conductor_u_roughness,
-                conductor_v_roughness,
-                remap_roughness,
-                thickness,
-                albedo,
-                g,
-                max_depth,
-                n_samples,
-            },
-            MaterialDesc::Mix { materials, amount } => Self::Mix { materials, amount },
-            MaterialDesc::Interface => Self::Interface,
-        }
+        desc.clone()
     }
 
     /// For [`Self::Mix`], the index of the material used at `si` (pbrt-v4
