@@ -375,6 +375,11 @@ fn check_mesh(
     Ok(())
 }
 
+/// Per-vertex shading normals made unit length (zero stays zero).
+fn unit_normals(normals: Option<&[Vec3]>) -> Option<Vec<Vec3>> {
+    normals.map(|n| n.iter().map(|v| v.normalize_or_zero()).collect())
+}
+
 /// The shapes a description stands for (one per triangle or patch of a mesh).
 fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
     match &s.geometry {
@@ -382,10 +387,7 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
             let mesh = Arc::new(TriangleMesh {
                 positions: m.positions.clone(),
                 indices: m.indices.clone(),
-                normals: m
-                    .normals
-                    .as_ref()
-                    .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
+                normals: unit_normals(m.normals.as_deref()),
                 uvs: m.uvs.clone(),
                 flip_normals: s.flip_normals,
             });
@@ -398,10 +400,7 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
             let mesh = Arc::new(BilinearMesh {
                 positions: m.positions.clone(),
                 indices: m.indices.clone(),
-                normals: m
-                    .normals
-                    .as_ref()
-                    .map(|n| n.iter().map(|v| v.normalize_or_zero()).collect()),
+                normals: unit_normals(m.normals.as_deref()),
                 uvs: m.uvs.clone(),
                 flip_normals: s.flip_normals,
             });

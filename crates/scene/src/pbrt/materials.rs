@@ -39,7 +39,7 @@ use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
 use super::params::{ParamSet, ParamType};
 use super::spectra::{glass_eta, metal_rgb, KNOWN_UNCONVERTED};
-use super::spectrum_rgb::{sampled_spectrum, SpectrumRole};
+use super::spectrum_rgb::{sampled_spectrum, spectrum_pairs, SpectrumRole};
 use crate::error::{Location, SceneError};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
@@ -578,8 +578,7 @@ fn dielectric_eta_named(params: &ParamSet, name: &str) -> Result<f32, SceneError
             })?,
             [] => {
                 // As for the named glasses: the index at 550 nm.
-                let v = p.floats();
-                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+                let pairs = spectrum_pairs(p.floats());
                 let s = sampled_spectrum(&pairs)
                     .map_err(|e| SceneError::invalid(&p.loc, format!("\"{}\" of {}: {e}", p.decl(), params.owner)))?;
                 s(550.0) as f32

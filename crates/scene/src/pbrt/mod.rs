@@ -8,14 +8,16 @@
 //!
 //! Supported now: the transform directives, `CoordinateSystem`/`CoordSysTransform`,
 //! attribute scopes (`TransformBegin`/`End` as in pbrt-v4), `ReverseOrientation`,
-//! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, every
-//! `Sampler` (rendered as independent), `Integrator "path"` (others fall back to it),
-//! `Material`/`MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix,
-//! checkerboard, imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource
-//! "diffuse"`, `LightSource "point"`, shapes `trianglemesh`, `plymesh`, `sphere`, `disk`,
-//! `bilinearmesh`, `Include`/`Import`, `ObjectBegin`/`ObjectEnd`/`ObjectInstance`,
-//! `Attribute`, `Option "seed"`, `ColorSpace "srgb"`. Other materials, texture classes, lights,
-//! shapes, media and motion blur are errors naming the feature.
+//! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, `Sampler`
+//! independent/stratified and the low-discrepancy ones (one Owen-scrambled Sobol' sampler
+//! for all), `Integrator "path"`/`"direct"` (others fall back to path), `Material`/
+//! `MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix, checkerboard,
+//! imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource "diffuse"`,
+//! `LightSource` point/spot/distant/infinite (see `lights`), shapes `trianglemesh`,
+//! `plymesh`, `sphere`, `disk`, `bilinearmesh` with `alpha`, `Include`/`Import`,
+//! `ObjectBegin`/`ObjectEnd`/`ObjectInstance`, `Attribute`, `Option "seed"`, `ColorSpace
+//! "srgb"`. Other materials, texture classes, lights, shapes, media and motion blur are
+//! errors naming the feature; the full list is `docs/pbrt-support.md`.
 //!
 //! Relative file names resolve as in pbrt-v4: against the directory of the top-level scene
 //! file (then, as a fallback, against the directory of the including file).

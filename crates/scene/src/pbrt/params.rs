@@ -10,7 +10,7 @@ use std::cell::Cell;
 use glam::Vec3;
 use mcrender_core::color::Rgb;
 
-use super::spectrum_rgb::{blackbody_rgb, sampled_spectrum, spectrum_to_rgb, SpectrumRole};
+use super::spectrum_rgb::{blackbody_rgb, sampled_spectrum, spectrum_pairs, spectrum_to_rgb, SpectrumRole};
 use super::tokenizer::{parse_number, Token, TokenKind};
 use crate::error::{Location, SceneError};
 
@@ -577,9 +577,7 @@ pub fn color_of(p: &Param, owner: &str, role: SpectrumRole) -> Result<Rgb, Scene
                 }
             }
             ParamType::Spectrum if matches!(p.values, ParamValues::Floats(_)) => {
-                let v = p.floats();
-                // Parsing already checked that the numbers come in pairs.
-                let pairs: Vec<(f32, f32)> = v.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+                let pairs = spectrum_pairs(p.floats());
                 let s = sampled_spectrum(&pairs).map_err(bad)?;
                 Ok(spectrum_to_rgb(s, role))
             }

@@ -30,6 +30,13 @@ pub enum SpectrumRole {
     Unbounded,
 }
 
+/// The `(wavelength, value)` pairs of a `spectrum` parameter's numbers `[l0 v0 l1 v1 ...]`
+/// (parsing has checked that they come in pairs).
+#[must_use]
+pub fn spectrum_pairs(values: &[f32]) -> Vec<(f32, f32)> {
+    values.chunks_exact(2).map(|c| (c[0], c[1])).collect()
+}
+
 /// A piecewise-linear spectrum from `(wavelength nm, value)` pairs.
 ///
 /// # Errors
