@@ -56,7 +56,8 @@ const FILM_BYTES_PER_PIXEL: usize = 8 * 8 + 3 * 8;
 #[derive(Args, Debug, Default, Clone)]
 pub struct CheckpointArgs {
     /// Save the render's state to this file every --checkpoint-every and when interrupted
-    /// (resume with --resume FILE). Default when interrupted: OUTPUT.ckpt.
+    /// (resume with --resume FILE, or by running the same command again). Default when
+    /// interrupted: OUTPUT.ckpt. An existing FILE of another render is refused.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
     /// Time between checkpoints, e.g. 60s, 500ms, 5m, 1h (default 60s).

@@ -51,7 +51,30 @@ pub fn render(
             checkpoint::check_fingerprint(&ck_path, &r.checkpoint, &fingerprint, desc)?;
             (r.invocation, Some(r.checkpoint.film))
         }
-        None => (Invocation::current()?, None),
+        // Re-running the command of a render that was stopped continues it; a checkpoint
+        // of another render is never overwritten.
+        None => {
+            match explicit.as_deref().filter(|p| p.exists()) {
+                Some(path) => {
+                    let ck = checkpoint::read(path).with_context(|| {
+                    format!("--checkpoint \"{}\" exists and is not a usable checkpoint; remove it or choose another file", path.display())
+                })?;
+                    checkpoint::check_fingerprint(path, &ck, &fingerprint, desc).with_context(|| {
+                        format!(
+                            "--checkpoint \"{}\" belongs to another render; remove it or choose another file",
+                            path.display()
+                        )
+                    })?;
+                    eprintln!(
+                        "mcrender: continuing the render in checkpoint \"{}\" ({} of {spp} samples per pixel done)",
+                        path.display(),
+                        ck.film.samples_per_pixel()
+                    );
+                    (Invocation::current()?, Some(ck.film))
+                }
+                None => (Invocation::current()?, None),
+            }
+        }
     };
     let every = args.checkpointing.checkpoint_every.unwrap_or(DEFAULT_EVERY);
     let opts = RenderOptions {
