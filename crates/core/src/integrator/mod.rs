@@ -6,10 +6,12 @@
 //! strategies that can only find light by hitting it refuse scenes with point-like lights.
 
 mod direct;
+mod lightpath;
 mod path;
 mod roulette;
 
 pub use direct::DirectEstimator;
+pub use lightpath::LightPathIntegrator;
 pub use path::PathIntegrator;
 pub use roulette::roulette;
 
