@@ -9,6 +9,7 @@ mod direct;
 mod lightpath;
 mod path;
 mod roulette;
+pub mod sppm;
 
 pub use direct::DirectEstimator;
 pub use lightpath::LightPathIntegrator;
