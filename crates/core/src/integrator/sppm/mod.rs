@@ -56,6 +56,41 @@ pub struct SppmSettings {
     pub max_depth: u32,
 }
 
+impl SppmSettings {
+    /// The scene's settings with pbrt-v4's defaults resolved: photons per iteration = the
+    /// pixel count, seed = the sampler's.
+    #[must_use]
+    pub fn from_scene(scene: &Scene) -> Self {
+        let s = &scene.integrator.sppm;
+        Self {
+            iterations: s.iterations.max(1),
+            photons_per_iteration: s
+                .photons_per_iteration
+                .unwrap_or(u64::from(scene.film.width) * u64::from(scene.film.height))
+                .max(1),
+            initial_radius: s.radius,
+            seed: s.seed.unwrap_or(scene.sampler.seed),
+            max_depth: scene.integrator.max_depth,
+        }
+    }
+}
+
+/// Render with SPPM on a pool of `threads` threads (`None`: all cores); see [`render`].
+///
+/// # Errors
+/// When the thread pool cannot be created.
+pub fn render_with_threads(
+    scene: &Scene,
+    settings: &SppmSettings,
+    threads: Option<usize>,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+) -> Result<(SppmOutput, usize), rayon::ThreadPoolBuildError> {
+    let threads = threads.unwrap_or_else(rayon::current_num_threads).max(1);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    Ok((pool.install(|| render(scene, settings, progress, cancel)), threads))
+}
+
 /// A finished SPPM render.
 #[derive(Clone, Debug)]
 pub struct SppmOutput {
