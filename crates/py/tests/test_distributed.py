@@ -55,16 +55,18 @@ def cluster():
         yield address
     finally:
         ray.shutdown()
-        # Stop the head we started (its process group: the processes `ray start` spawned).
+        # Stop the head we started: SIGINT makes `ray start --block` stop the processes it
+        # spawned (a few seconds); whatever is left of its process group is then killed.
         try:
-            os.killpg(head.pid, signal.SIGTERM)
+            head.send_signal(signal.SIGINT)
             head.wait(timeout=30)
-        except (ProcessLookupError, subprocess.TimeoutExpired):
+        except subprocess.TimeoutExpired:
             pass
         try:
             os.killpg(head.pid, signal.SIGKILL)
         except ProcessLookupError:
             pass
+        head.wait()
         shutil.rmtree(temp, ignore_errors=True)
 
 
