@@ -1,7 +1,8 @@
 //! `mcrender.Film`: the per-pixel sums of a render of some sample range (weights, weighted
-//! radiance and its square, sample counts, in `f64`). Films of consecutive sample ranges
-//! merge (in sample order) into the film of their union; this is how `mcrender.distributed`
-//! assembles chunks rendered on Ray workers. Films pickle to a compact byte string.
+//! radiance and its square, sample counts and splat sums, in `f64`). Films of consecutive
+//! sample ranges merge (in sample order) into the film of their union, up to the rounding
+//! of the f64 additions' grouping; this is how `mcrender.distributed` assembles chunks
+//! rendered on Ray workers. Films pickle to a compact byte string.
 
 use mcrender_core::color::Rgb;
 use mcrender_core::film::{Film, PixelStats};
@@ -11,10 +12,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
-/// Bytes of the header (width, height as little-endian u32) and of one pixel (seven f64
-/// sums and a u64 count).
-const HEADER: usize = 8;
-const PIXEL: usize = 64;
+/// Bytes of the header (width, height as little-endian u32, samples per pixel as u64) and
+/// of one pixel (seven f64 sums, a u64 count, three f64 splat sums).
+const HEADER: usize = 16;
+const PIXEL: usize = 88;
 
 /// The accumulated samples of a render: `image()` is the estimate, `variance()` the
 /// estimated variance of each pixel's estimate.
@@ -40,12 +41,16 @@ impl PyFilm {
         let mut out = Vec::with_capacity(HEADER + PIXEL * self.film.pixels().len());
         out.extend_from_slice(&self.film.width().to_le_bytes());
         out.extend_from_slice(&self.film.height().to_le_bytes());
-        for p in self.film.pixels() {
+        out.extend_from_slice(&self.film.samples_per_pixel().to_le_bytes());
+        for (p, splat) in self.film.pixels().iter().zip(self.film.splat_sums()) {
             out.extend_from_slice(&p.sum_w.to_le_bytes());
             for v in p.sum_wl.iter().chain(&p.sum_wl2) {
                 out.extend_from_slice(&v.to_le_bytes());
             }
             out.extend_from_slice(&p.count.to_le_bytes());
+            for v in splat {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
         }
         out
     }
@@ -58,23 +63,24 @@ impl PyFilm {
         }
         let width = u32::from_le_bytes(bytes[0..4].try_into().map_err(|_| bad())?);
         let height = u32::from_le_bytes(bytes[4..8].try_into().map_err(|_| bad())?);
+        let spp = u64::from_le_bytes(word(8));
         let n = width as usize * height as usize;
         if bytes.len() != HEADER + PIXEL * n {
             return Err(bad());
         }
-        let mut film = Film::new(width, height);
-        for y in 0..height {
-            for x in 0..width {
-                let at = HEADER + PIXEL * (y as usize * width as usize + x as usize);
-                let f = |k: usize| f64::from_le_bytes(word(at + 8 * k));
-                *film.pixel_mut(x, y) = PixelStats {
-                    sum_w: f(0),
-                    sum_wl: [f(1), f(2), f(3)],
-                    sum_wl2: [f(4), f(5), f(6)],
-                    count: u64::from_le_bytes(word(at + 56)),
-                };
-            }
+        let (mut pixels, mut splats) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for i in 0..n {
+            let at = HEADER + PIXEL * i;
+            let f = |k: usize| f64::from_le_bytes(word(at + 8 * k));
+            pixels.push(PixelStats {
+                sum_w: f(0),
+                sum_wl: [f(1), f(2), f(3)],
+                sum_wl2: [f(4), f(5), f(6)],
+                count: u64::from_le_bytes(word(at + 56)),
+            });
+            splats.push([f(8), f(9), f(10)]);
         }
+        let film = Film::from_parts(width, height, pixels, splats, spp).ok_or_else(bad)?;
         Ok(film)
     }
 }
@@ -93,11 +99,10 @@ impl PyFilm {
         self.film.height()
     }
 
-    /// Samples accumulated in the first pixel (every pixel has as many, less dropped
-    /// non-finite ones).
+    /// Samples per pixel rendered into the film.
     #[getter]
     fn samples(&self) -> u64 {
-        self.film.pixels().first().map_or(0, |p| p.count)
+        self.film.samples_per_pixel()
     }
 
     /// A new film with `other`'s samples added to this one's. Merge films in sample order

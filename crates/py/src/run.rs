@@ -3,18 +3,17 @@
 //! raises KeyboardInterrupt there) and to report progress, and on an exception sets the
 //! cancel flag, waits for the render to stop and re-raises it.
 //!
-//! The render runs one sample index at a time (waves of one sample per pixel), checking the
-//! cancel flag between waves; one-sample films merge into exactly the film of a single
-//! render of the whole range (each pixel's sums gain one term per wave, in sample order,
-//! as in a single render), so the image is bit-identical to the CLI's.
+//! The render is one [`RenderSession`] (as the CLI's), advanced in waves of samples of
+//! about a quarter second each; the session checks the cancel flag before each work unit
+//! (a tile of a wave), so Ctrl-C stops the render within a fraction of a second, and since
+//! consecutive waves continue the session's film, the image is bit-identical to the CLI's.
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use mcrender_core::film::Film;
-use mcrender_core::render::{render_samples, RenderError, RenderOptions, RenderOutput, RenderStats};
+use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Watch};
 use mcrender_core::scene::Scene;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
@@ -24,6 +23,9 @@ use crate::errors::render_error;
 
 /// How often the waiting thread looks at signals and progress.
 const POLL: Duration = Duration::from_millis(50);
+
+/// The time a wave of samples aims at (see [`render_session`]).
+const WAVE_SECONDS: f64 = 0.25;
 
 /// The `progress=` argument as passed.
 #[derive(FromPyObject)]
@@ -113,7 +115,7 @@ pub fn render_range(
             let (finished_tx, finished) = mpsc::channel::<()>();
             let (done, cancel) = (&done, &cancel);
             let worker = s.spawn(move || {
-                let r = render_waves(scene, opts, samples, done, cancel);
+                let r = render_session(scene, opts, samples, done, cancel);
                 // The receiver may be gone only if the waiting loop panicked.
                 let _ = finished_tx.send(());
                 r
@@ -139,11 +141,7 @@ pub fn render_range(
         (_, Some(e)) => Err(e),
         (Err(_), None) => Err(PyRuntimeError::new_err("mcrender: the render thread panicked")),
         (Ok(Err(e)), None) => Err(render_error(&e)),
-        (Ok(Ok(out)), None) => match out {
-            Some(out) => progress.update(py, total, total).map(|()| out),
-            // Cancelled without an exception cannot happen: only an exception cancels.
-            None => Err(PyRuntimeError::new_err("mcrender: the render was cancelled")),
-        },
+        (Ok(Ok(out)), None) => progress.update(py, total, total).map(|()| out),
     };
     let closed = progress.close(py);
     let out = finished?;
@@ -151,31 +149,47 @@ pub fn render_range(
     Ok(out)
 }
 
-/// One wave per sample index, merged in order; `None` when cancelled.
-fn render_waves(
+/// Render `samples` in one session, reporting progress to `done`, stopping when `cancel`
+/// is set. The session is advanced in waves of about [`WAVE_SECONDS`] (the first wave one
+/// sample per pixel, each later one sized from the time per sample so far, growing at most
+/// fourfold): the session's cancel check is per tile of a wave, so this bounds how long
+/// Ctrl-C waits, and consecutive waves continue the film exactly.
+fn render_session(
     scene: &Scene,
     opts: &RenderOptions,
     samples: Range<u32>,
     done: &AtomicU64,
     cancel: &AtomicBool,
-) -> Result<Option<RenderOutput>, RenderError> {
+) -> Result<RenderOutput, RenderError> {
     let pixels = u64::from(scene.film.width) * u64::from(scene.film.height);
-    let mut film = Film::new(scene.film.width, scene.film.height);
-    let mut stats = RenderStats::default();
-    for s in samples.clone() {
-        if cancel.load(Ordering::Relaxed) {
-            return Ok(None);
-        }
+    let mut session = RenderSession::new(scene, opts)?;
+    let mut stats = RenderStats {
+        threads: session.threads(),
+        ..Default::default()
+    };
+    let (mut s, mut wave) = (samples.start, 1u32);
+    while s < samples.end {
+        let end = s.saturating_add(wave).min(samples.end);
         let base = u64::from(s - samples.start) * pixels;
-        let out = render_samples(scene, opts, s..s + 1, &|n, _| {
-            done.fetch_max(base + n, Ordering::Relaxed);
-        })?;
-        film.merge(&out.film);
-        stats.elapsed += out.stats.elapsed;
-        stats.paths += out.stats.paths;
-        stats.trace += out.stats.trace;
-        stats.nonfinite_samples += out.stats.nonfinite_samples;
-        stats.threads = out.stats.threads;
+        let watch = Watch {
+            progress: |n: u64, _total: u64| {
+                done.fetch_max(base + n, Ordering::Relaxed);
+            },
+            cancel,
+        };
+        let w = session.advance(s..end, &watch)?;
+        let per_sample = w.elapsed.as_secs_f64() / f64::from(end - s);
+        let fit = (WAVE_SECONDS / per_sample.max(1e-9)).min(f64::from(u32::MAX)) as u32;
+        wave = fit.clamp(1, wave.saturating_mul(4));
+        stats.elapsed += w.elapsed;
+        stats.paths += w.paths;
+        stats.trace += w.trace;
+        stats.nonfinite_samples += w.nonfinite_samples;
+        stats.dropped_splats += w.dropped_splats;
+        s = end;
     }
-    Ok(Some(RenderOutput { film, stats }))
+    Ok(RenderOutput {
+        film: session.into_film(),
+        stats,
+    })
 }

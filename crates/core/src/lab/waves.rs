@@ -1,11 +1,11 @@
 //! Rendering a film in waves of doubling sample counts (1, 2, 4, ...), measuring it after
-//! every wave: the data of a convergence plot. The waves are disjoint sample ranges merged
-//! with [`Film::merge`].
+//! every wave: the data of a convergence plot. The waves continue one
+//! [`RenderSession`]'s film, so the final film is the one a single pass gives.
 
 use std::time::Duration;
 
 use crate::film::Film;
-use crate::render::{render_samples, RenderError, RenderOptions};
+use crate::render::{RenderError, RenderOptions, RenderSession};
 use crate::scene::{BuildError, Scene, SceneDescription};
 
 /// Why a study could not run.
@@ -37,7 +37,8 @@ pub struct Progression {
 }
 
 /// Render `desc` up to its sample count in waves 1, 2, 4, ... (the last wave tops up to
-/// the sample count), calling `measure` on the film after each.
+/// the sample count) of one render session, calling `measure` on the film after each. The
+/// final film is bit-identical to a render in one pass.
 pub fn render_in_waves(
     desc: &SceneDescription,
     threads: Option<usize>,
@@ -49,22 +50,15 @@ pub fn render_in_waves(
         threads,
         ..Default::default()
     };
-    let mut film = Film::new(desc.film.width, desc.film.height);
-    let (mut time, mut rays, mut points) = (Duration::ZERO, 0, Vec::new());
-    let mut done = 0;
-    while done < spp {
-        let next = (done * 2).clamp(1, spp);
-        let out = render_samples(&scene, &opts, done..next, &|_, _| {})?;
-        film.merge(&out.film);
-        time += out.stats.elapsed;
-        rays += out.stats.trace.rays + out.stats.trace.shadow_rays;
-        done = next;
-        points.push((done, measure(&film)));
-    }
+    let mut session = RenderSession::new(&scene, &opts)?;
+    let mut points = Vec::new();
+    let stats = session.render_in_waves(0..spp, &(), |film, _| {
+        points.push((film.samples_per_pixel() as u32, measure(film)));
+    })?;
     Ok(Progression {
-        film,
-        time,
-        rays,
+        film: session.into_film(),
+        time: stats.elapsed,
+        rays: stats.trace.rays + stats.trace.shadow_rays,
         points,
     })
 }

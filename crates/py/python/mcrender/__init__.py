@@ -11,7 +11,7 @@ Load a pbrt-v4 scene, change its settings, render it to a numpy array::
 
 The image is bit for bit the one ``mcrender render`` writes for the same scene, seed and
 samples per pixel. Rendering releases the GIL; Ctrl-C (KeyboardInterrupt) stops it within
-one pass over the image. ``mcrender.compare`` and ``mcrender.pi`` are the estimator lab;
+a fraction of a second. ``mcrender.compare`` and ``mcrender.pi`` are the estimator lab;
 ``mcrender.distributed`` renders across a Ray cluster.
 """
 

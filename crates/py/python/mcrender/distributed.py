@@ -3,7 +3,13 @@
 ``render(scene_path, spp, seed, address, chunks)`` cuts the samples per pixel into
 consecutive ranges (chunks), renders each as a Ray task, and merges the chunks' per-pixel
 sums in sample order, so the image is the one a single-process ``Scene.render`` gives for
-the same scene, seed and spp. Workers need no shared file system: the scene file and every
+the same scene, seed and spp: every sample is the same (it depends on seed, pixel and
+sample index only), and the float32 image and variance come out bit-identical. (The f64
+sums behind them are added in a different grouping, chunk by chunk, so their last bits
+can differ; such a difference changes a float32 value only if it straddles a float32
+rounding boundary, about 1 in 10^8 values. Measured: 0 of 213,504 image and variance
+values differ on the occluder, 160x120 at 64 spp in 4 chunks, and the Cornell box, 128x128
+at 32 spp in 4 chunks, while 20-25% of the f64 sums do.) Workers need no shared file system: the scene file and every
 file it references (``Include``/``Import``, PLY meshes, image textures and environment
 maps: every quoted string in the scene files that names an existing file) travel through
 Ray's object store once, and each worker writes them into a temporary directory and loads
