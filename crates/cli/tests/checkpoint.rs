@@ -284,3 +284,45 @@ fn mismatched_truncated_and_foreign_checkpoints_are_refused() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read(d.join("out.exr")).unwrap(), b"sentinel");
 }
+
+/// The light tracer splats into other pixels: its splat sums are checkpointed and continued
+/// too, so a killed and resumed render still matches an uninterrupted one byte for byte.
+#[test]
+fn a_splatting_integrator_resumes_to_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = |out: &'static str| {
+        vec![
+            "render".to_string(),
+            scene("cornell-box/scene-v4.pbrt"),
+            "--integrator".into(),
+            "lightpath".into(),
+            "--spp".into(),
+            "200".into(),
+            "--resolution".into(),
+            RES.into(),
+            "-o".into(),
+            out.into(),
+            "-q".into(),
+        ]
+    };
+    let r = args("ref.exr");
+    let o = mcrender(&r.iter().map(String::as_str).collect::<Vec<_>>(), d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mcrender"))
+        .args(args("out.exr"))
+        .args(["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"])
+        .current_dir(d)
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for(&d.join("c.ckpt"), &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let o = resume(d, "c.ckpt", &["--threads", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(d.join("out.exr")).unwrap(),
+        std::fs::read(d.join("ref.exr")).unwrap()
+    );
+}
