@@ -228,12 +228,14 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path" or "direct".
+    /// The integrator: "path", "direct", "lightpath" (or "sppm", read only).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
             IntegratorKind::Path => "path",
             IntegratorKind::Direct => "direct",
+            IntegratorKind::LightPath => "lightpath",
+            IntegratorKind::Sppm => "sppm",
         }
     }
 
@@ -242,9 +244,10 @@ impl PyScene {
         self.desc.integrator.kind = match value {
             "path" => IntegratorKind::Path,
             "direct" => IntegratorKind::Direct,
+            "lightpath" => IntegratorKind::LightPath,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\" or \"direct\", found \"{value}\""
+                    "integrator: expected \"path\", \"direct\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
                 )))
             }
         };
