@@ -9,9 +9,10 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::Scene;
-use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_scene::image_io::{write_images, ImageRgb};
 
 use crate::builtin;
+use crate::preflight;
 use crate::scene_args::SceneArgs;
 
 /// Options of `mcrender render`; flags override what the scene file says.
@@ -49,7 +50,9 @@ impl RenderArgs {
 
 /// Run the command.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    preflight::check_threads(args.scene.threads)?;
     let (loaded, stem) = args.scene.load()?;
+    let image_bytes = loaded.image_bytes;
     let mut desc = loaded.description;
     args.scene.apply(&mut desc)?;
     let output = args
@@ -61,6 +64,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(v) = &args.variance_output {
         check_extension(v, &["exr"])?;
     }
+    preflight::check_before_render(
+        &desc,
+        image_bytes,
+        args.scene.memory_limit(),
+        &[
+            ("output", Some(&output)),
+            ("--variance-output", args.variance_output.as_deref()),
+        ],
+    )?;
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
@@ -116,15 +128,15 @@ fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> 
         height: h,
         pixels: out.film.mean_image(),
     };
-    write_image(output, &img).with_context(|| format!("cannot write \"{}\"", output.display()))?;
-    if let Some(v) = variance {
-        let var = ImageRgb {
-            width: w,
-            height: h,
-            pixels: out.film.variance_image(),
-        };
-        write_image(v, &var).with_context(|| format!("cannot write \"{}\"", v.display()))?;
-    }
+    let var = variance.map(|_| ImageRgb {
+        width: w,
+        height: h,
+        pixels: out.film.variance_image(),
+    });
+    // Both files or neither.
+    let mut images = vec![(output, &img)];
+    images.extend(variance.zip(var.as_ref()));
+    write_images(&images).context("cannot write the images")?;
     Ok(())
 }
 
