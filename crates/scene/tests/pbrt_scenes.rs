@@ -2,7 +2,6 @@
 //! `MCRENDER_SCENES` names the directory holding `cornell-box/`, `coffee/`, `veach-mis/`)
 //! the shared test scenes.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
