@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
 
-pub use self::exr::{read_exr, write_exr_layers};
+pub use self::exr::{read_exr, read_exr_metadata, write_exr_layers, write_exr_layers_with_metadata};
 pub use self::pfm::read_pfm;
 pub use self::read::{decode_image, image_dimensions, read_image, read_image_encoded, ColorEncoding, ImageFormat};
 
@@ -122,7 +122,7 @@ fn stage_image(path: &Path, img: &ImageRgb) -> Result<atomic::Staged, ImageError
         .to_ascii_lowercase();
     match extension.as_str() {
         "png" => png::stage_png(path, img),
-        "exr" => self::exr::stage_exr_layers(path, img.width, img.height, &[("", &img.pixels)]),
+        "exr" => self::exr::stage_exr_layers(path, img.width, img.height, &[("", &img.pixels)], &[]),
         _ => Err(ImageError::UnsupportedFormat {
             path: path.to_path_buf(),
             extension,
