@@ -12,6 +12,7 @@ mod diff_cmd;
 mod interrupt;
 mod lab;
 mod pi_cmd;
+mod preflight;
 mod progressive;
 mod render_cmd;
 mod scene_args;
@@ -67,8 +68,49 @@ fn main() -> ExitCode {
             ExitCode::from(e.downcast_ref::<interrupt::Interrupted>().map_or(2, |i| i.code))
         }
         Err(e) => {
-            eprintln!("mcrender: error: {e:#}");
+            eprintln!("mcrender: error: {}", error_line(&e));
             ExitCode::from(2)
         }
+    }
+}
+
+/// An error and its causes on one line, `outer: cause: cause`, without a cause whose text
+/// the line already holds (an I/O error is often both a message and its source, which read
+/// "No such file or directory: No such file or directory (os error 2)"), control characters
+/// escaped and quoted input shortened.
+fn error_line(e: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        let bare = match cause.downcast_ref::<std::io::Error>() {
+            Some(io) => mcrender_scene::io_error_text(io),
+            None => text.clone(),
+        };
+        if line.contains(bare.trim()) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    mcrender_scene::tidy_message(&line)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn doubled_os_errors_are_printed_once() {
+        let io = std::fs::File::open("/definitely/not/here").unwrap_err();
+        let img = mcrender_scene::ImageError::Io {
+            path: "/definitely/not/here".into(),
+            source: io,
+        };
+        let e = anyhow::Error::new(img).context("cannot read \"x.png\"");
+        let line = error_line(&e);
+        assert_eq!(line.matches("No such file or directory").count(), 1, "{line}");
+        assert!(!line.contains("os error"), "{line}");
     }
 }

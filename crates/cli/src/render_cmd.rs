@@ -10,9 +10,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::integrator::sppm::{self, SppmSettings};
 use mcrender_core::render::{RenderOutput, RenderStats};
 use mcrender_core::scene::{IntegratorKind, Scene};
-use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_scene::image_io::{write_images, ImageRgb};
 
 use crate::builtin;
+use crate::preflight;
 use crate::scene_args::SceneArgs;
 
 /// Options of `mcrender render`; flags override what the scene file says.
@@ -56,7 +57,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let resume = crate::checkpoint::prepare_resume(args)?;
     let args = resume.as_ref().map_or(args, |r| &r.args).clone();
     let args = &args;
+    preflight::check_threads(args.scene.threads)?;
     let (loaded, stem) = args.scene.load()?;
+    let image_bytes = loaded.image_bytes;
     let mut desc = loaded.description;
     args.scene.apply(&mut desc)?;
     let output = args
@@ -68,6 +71,16 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(v) = &args.variance_output {
         check_extension(v, &["exr"])?;
     }
+    preflight::check_before_render(
+        &desc,
+        image_bytes,
+        args.scene.memory_limit(),
+        &[
+            ("output", Some(&output)),
+            ("--variance-output", args.variance_output.as_deref()),
+            ("--checkpoint", args.checkpointing.checkpoint.as_deref()),
+        ],
+    )?;
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     if desc.integrator.kind == IntegratorKind::Sppm {
@@ -162,15 +175,15 @@ fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> 
         height: h,
         pixels: out.film.mean_image(),
     };
-    write_image(output, &img).with_context(|| format!("cannot write \"{}\"", output.display()))?;
-    if let Some(v) = variance {
-        let var = ImageRgb {
-            width: w,
-            height: h,
-            pixels: out.film.variance_image(),
-        };
-        write_image(v, &var).with_context(|| format!("cannot write \"{}\"", v.display()))?;
-    }
+    let var = variance.map(|_| ImageRgb {
+        width: w,
+        height: h,
+        pixels: out.film.variance_image(),
+    });
+    // Both files or neither.
+    let mut images = vec![(output, &img)];
+    images.extend(variance.zip(var.as_ref()));
+    write_images(&images).context("cannot write the images")?;
     Ok(())
 }
 

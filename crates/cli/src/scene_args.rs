@@ -6,7 +6,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
-use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
+use mcrender_core::scene::{MAX_PIXELS, MAX_RESOLUTION};
+use mcrender_scene::limits::LoadLimits;
+use mcrender_scene::pbrt::{load_file_with, load_str, LoadOptions, LoadedScene};
+use mcrender_scene::quoted;
 
 use crate::builtin;
 
@@ -84,26 +87,36 @@ pub struct SceneArgs {
     /// Lecture's Russian roulette: probability of stopping when played (default 0.5).
     #[arg(long)]
     pub rr_prob: Option<f32>,
+    /// Memory the render may use (film, images, meshes, BVH), e.g. 8G or 50%; default 75%
+    /// of physical memory. A scene that needs more is refused before anything is allocated.
+    #[arg(long, value_parser = crate::preflight::parse_bytes)]
+    pub max_memory: Option<u64>,
 }
 
 /// Parse `WIDTHxHEIGHT`.
 pub fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, found \"{s}\""))?;
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, found {}", quoted(s)))?;
     let parse = |v: &str| {
         v.trim()
             .parse::<u32>()
-            .map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found \"{s}\""))
+            .map_err(|_| format!("expected WIDTHxHEIGHT with whole numbers, found {}", quoted(s)))
     };
-    Ok((parse(w)?, parse(h)?))
+    let (w, h) = (parse(w)?, parse(h)?);
+    if w == 0 || h == 0 || w > MAX_RESOLUTION || h > MAX_RESOLUTION || u64::from(w) * u64::from(h) > MAX_PIXELS {
+        return Err(format!(
+            "{w}x{h}: expected sides between 1 and {MAX_RESOLUTION} and at most {MAX_PIXELS} pixels"
+        ));
+    }
+    Ok((w, h))
 }
 
 /// Parse a direct-lighting strategy name.
 pub fn parse_strategy(s: &str) -> Result<DirectStrategy, String> {
     DirectStrategy::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
         let names: Vec<_> = DirectStrategy::ALL.iter().map(|d| d.name()).collect();
-        format!("expected one of {}, found \"{s}\"", names.join(", "))
+        format!("expected one of {}, found {}", names.join(", "), quoted(s))
     })
 }
 
@@ -112,7 +125,13 @@ impl SceneArgs {
     pub fn load(&self) -> Result<(LoadedScene, String)> {
         let (loaded, stem) = match &self.scene {
             Some(path) => {
-                let loaded = load_file(path).map_err(anyhow::Error::new)?;
+                let options = LoadOptions {
+                    limits: LoadLimits {
+                        max_memory: self.memory_limit(),
+                    },
+                    ..LoadOptions::default()
+                };
+                let loaded = load_file_with(path, &options).map_err(anyhow::Error::new)?;
                 let stem = path
                     .file_stem()
                     .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());
@@ -127,6 +146,11 @@ impl SceneArgs {
             eprintln!("mcrender: {w}");
         }
         Ok((loaded, stem))
+    }
+
+    /// The memory limit: `--max-memory`, else the default share of physical memory.
+    pub fn memory_limit(&self) -> u64 {
+        self.max_memory.unwrap_or_else(crate::preflight::default_max_memory)
     }
 
     /// Apply the overrides to a description.

@@ -80,7 +80,7 @@ impl SceneError {
         Self {
             kind,
             location,
-            message: message.into(),
+            message: tidy_message(&message.into()),
         }
     }
 
@@ -120,9 +120,149 @@ pub fn io_error_text(err: &std::io::Error) -> String {
     }
 }
 
+/// At most this many characters of user input are shown in a message.
+pub const QUOTE_MAX_CHARS: usize = 80;
+
+/// `text` in double quotes for an error message: control characters, quotes and
+/// backslashes escaped (`\n`, `\0`, `\u{1b}`, ...), and cut after [`QUOTE_MAX_CHARS`]
+/// characters with the full length noted, so a 10 MB token or a NUL byte never reaches the
+/// terminal as is.
+#[must_use]
+pub fn quoted(text: &str) -> String {
+    let mut out = String::with_capacity(text.len().min(4 * QUOTE_MAX_CHARS) + 2);
+    out.push('"');
+    for (shown, c) in text.chars().enumerate() {
+        if shown == QUOTE_MAX_CHARS {
+            out.push_str(&format!("...\" ({} characters)", text.chars().count()));
+            return out;
+        }
+        push_escaped(&mut out, c);
+    }
+    out.push('"');
+    out
+}
+
+/// `text` with control characters escaped as in [`quoted`], without quotes or shortening
+/// (for whole messages that may embed input).
+#[must_use]
+pub fn escape_control(text: &str) -> String {
+    if !text.chars().any(char::is_control) {
+        return text.to_string();
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            push_escaped(&mut out, c);
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// Longest message a [`SceneError`] keeps (characters); beyond it the text is cut.
+const MESSAGE_MAX_CHARS: usize = 1000;
+
+/// A message made safe to print on one line: every double-quoted part longer than
+/// [`QUOTE_MAX_CHARS`] is cut as [`quoted`] cuts it, control characters are escaped, and
+/// the whole is at most [`MESSAGE_MAX_CHARS`] characters.
+#[must_use]
+pub fn tidy_message(message: &str) -> String {
+    let chars: Vec<char> = message.chars().collect();
+    let mut out = String::with_capacity(message.len().min(4 * MESSAGE_MAX_CHARS));
+    let mut i = 0;
+    while i < chars.len() {
+        if chars[i] != '"' {
+            push_escaped_control(&mut out, chars[i]);
+            i += 1;
+            continue;
+        }
+        // A quoted part: up to the next quote that is not escaped.
+        let mut j = i + 1;
+        while j < chars.len() && chars[j] != '"' {
+            j += if chars[j] == '\\' { 2 } else { 1 };
+        }
+        let inner = &chars[i + 1..j.min(chars.len())];
+        out.push('"');
+        // A part that `quoted` already shortened (ending in "...", at most four characters
+        // per character shown once escaped) stays as it is.
+        let shortened = inner.ends_with(&['.', '.', '.']) && inner.len() <= 4 * QUOTE_MAX_CHARS + 3;
+        let keep = if shortened { inner.len() } else { QUOTE_MAX_CHARS };
+        for &c in inner.iter().take(keep) {
+            push_escaped_control(&mut out, c);
+        }
+        if inner.len() > keep {
+            out.push_str(&format!("...\" ({} characters)", inner.len()));
+        } else if j < chars.len() {
+            out.push('"');
+        }
+        i = j + 1;
+    }
+    if out.chars().count() > MESSAGE_MAX_CHARS {
+        let cut: String = out.chars().take(MESSAGE_MAX_CHARS).collect();
+        return format!("{cut}... (message cut)");
+    }
+    out
+}
+
+fn push_escaped_control(out: &mut String, c: char) {
+    if c.is_control() {
+        push_escaped(out, c);
+    } else {
+        out.push(c);
+    }
+}
+
+fn push_escaped(out: &mut String, c: char) {
+    match c {
+        '"' => out.push_str("\\\""),
+        '\\' => out.push_str("\\\\"),
+        '\n' => out.push_str("\\n"),
+        '\r' => out.push_str("\\r"),
+        '\t' => out.push_str("\\t"),
+        '\0' => out.push_str("\\0"),
+        c if c.is_control() => out.push_str(&format!("\\u{{{:x}}}", u32::from(c))),
+        c => out.push(c),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quoted_escapes_control_characters_and_cuts_long_input() {
+        assert_eq!(quoted("abc"), "\"abc\"");
+        assert_eq!(quoted("a\0b\n\u{1b}[31m\"q\"\\"), r#""a\0b\n\u{1b}[31m\"q\"\\""#);
+        let long = "x".repeat(10_000_000);
+        let q = quoted(&long);
+        assert!(q.len() < 120, "{}", q.len());
+        assert!(q.ends_with("...\" (10000000 characters)"), "{q}");
+        assert_eq!(escape_control("a\0b"), "a\\0b");
+        assert_eq!(escape_control("plain"), "plain");
+    }
+
+    #[test]
+    fn ten_megabyte_token_is_not_echoed_in_full() {
+        let long = "y".repeat(10_000_000);
+        let e = SceneError::syntax(
+            &Location::new("s.pbrt".into(), 1, 1),
+            format!("unknown directive \"{long}\""),
+        );
+        let text = e.to_string();
+        assert!(text.len() < 200, "{}", text.len());
+        assert!(text.contains("(10000000 characters)"), "{text}");
+        // Short quoted parts and the text around them are kept as they are.
+        let e = SceneError::syntax(&Location::new("s.pbrt".into(), 1, 1), "expected \"[\", found \"x\"");
+        assert_eq!(e.message, "expected \"[\", found \"x\"");
+    }
+
+    #[test]
+    fn raw_nul_bytes_are_not_printed() {
+        let e = SceneError::syntax(&Location::new("s.pbrt".into(), 1, 1), "unknown directive \"a\0b\u{7}\"");
+        assert!(!e.to_string().chars().any(char::is_control), "{e}");
+        assert!(e.to_string().contains("a\\0b\\u{7}"), "{e}");
+    }
 
     #[test]
     fn display_has_file_line_column() {

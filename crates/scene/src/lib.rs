@@ -8,10 +8,13 @@
 //!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
 
 mod error;
+pub mod fuzzing;
 pub mod image_io;
+pub mod limits;
 pub mod pbrt;
 pub mod ply;
+pub mod source;
 
-pub use error::{io_error_text, Location, SceneError, SceneErrorKind};
-pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, ImageError, ImageRgb};
-pub use pbrt::{load_file, load_str, LoadedScene};
+pub use error::{escape_control, io_error_text, quoted, tidy_message, Location, SceneError, SceneErrorKind};
+pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, write_images, ImageError, ImageRgb};
+pub use pbrt::{load_file, load_file_with, load_str, load_str_with, LoadOptions, LoadedScene};

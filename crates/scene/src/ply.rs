@@ -40,8 +40,9 @@ pub enum PlyError {
     /// The file could not be opened or read.
     #[error("{0}")]
     Io(#[from] std::io::Error),
-    /// The file is not a valid PLY mesh.
-    #[error("{0}")]
+    /// The file is not a valid PLY mesh (shown with control characters escaped and long
+    /// quoted input shortened).
+    #[error("{}", crate::error::tidy_message(.0))]
     Format(String),
 }
 
@@ -99,9 +100,33 @@ pub fn read_ply_bytes(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
 }
 
 fn format_error(what: &str, err: &std::io::Error) -> PlyError {
-    // ply-rs spreads its messages over several lines; keep them on one.
-    let detail = err.to_string().split_whitespace().collect::<Vec<_>>().join(" ");
-    PlyError::Format(format!("{what}: {detail}"))
+    PlyError::Format(format!("{what}: {}", ply_rs_message(&err.to_string())))
+}
+
+/// One line from a `ply-rs` message, which reads `Line N: what.\n\tString: 'input'\n\tError:
+/// <a Debug dump of its parser's state>`: the line and what, the input quoted (shortened),
+/// and no dump.
+fn ply_rs_message(text: &str) -> String {
+    let mut parts = Vec::new();
+    for line in text.lines().map(str::trim) {
+        if line.starts_with("Error:") {
+            // The rest is a Debug dump, possibly over several lines.
+            break;
+        }
+        if let Some(input) = line.strip_prefix("String:") {
+            let input = input.trim().trim_matches('\'');
+            parts.push(format!("in {}", crate::error::quoted(input.trim())));
+        } else if !line.is_empty() && line != "'" {
+            let line = line
+                .strip_prefix("Line ")
+                .map_or_else(|| line.to_string(), |l| format!("line {l}"));
+            parts.push(line.trim_end_matches('.').to_string());
+        }
+    }
+    if parts.is_empty() {
+        return "malformed file".into();
+    }
+    parts.join(" ")
 }
 
 /// Guard `ply-rs` against headers it handles badly: it parses header numbers with `unwrap`
@@ -356,6 +381,18 @@ mod tests {
     use super::*;
 
     const ASCII_QUAD: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n5 0 1 2 3 0\n";
+
+    #[test]
+    fn ply_rs_debug_dumps_are_not_shown() {
+        let src = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty foo y\nend_header\n";
+        let err = read_ply_bytes(src.as_bytes()).unwrap_err().to_string();
+        assert!(!err.contains("ParseError") && !err.contains('{'), "{err}");
+        assert!(err.contains("line 5") && err.contains("\"property foo y\""), "{err}");
+        let src = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\nzz\n";
+        let err = read_ply_bytes(src.as_bytes()).unwrap_err().to_string();
+        assert!(!err.contains("Custom") && !err.contains("kind:"), "{err}");
+        assert!(!err.chars().any(char::is_control), "{err}");
+    }
 
     #[test]
     fn ascii_quads_are_split_and_big_polygons_skipped() {

@@ -26,6 +26,12 @@ pub const MAX_RESOLUTION: u32 = 32_768;
 /// Largest pixel count accepted.
 pub const MAX_PIXELS: u64 = 1 << 28;
 
+/// Largest coordinate (in absolute value) a shape may reach in world space. Rendering
+/// works in 32-bit floats, where a squared distance overflows to infinity past about
+/// 1.8e19; beyond this bound areas, pdfs and ray offsets become infinite or zero and the
+/// image black (issue 10: a sphere of radius 1e38 rendered black and exited 0).
+pub const MAX_SCENE_COORDINATE: f32 = 1e18;
+
 /// Why a description cannot be rendered.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum BuildError {
@@ -597,6 +603,17 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
     Ok(())
 }
 
+/// The largest absolute coordinate of `b`.
+fn farthest(b: &crate::math::Bounds3) -> f32 {
+    b.min.abs().max(b.max.abs()).max_element()
+}
+
+/// Whether `b` lies within [`MAX_SCENE_COORDINATE`] of the origin on every axis.
+fn within_scene_limit(b: &crate::math::Bounds3) -> bool {
+    // Empty bounds (min above max) hold nothing and pass.
+    b.min.cmpgt(b.max).any() || farthest(b) <= MAX_SCENE_COORDINATE
+}
+
 fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
     if r.iter().all(|v| *v > 0.0 && v.is_finite()) {
         Ok(())
@@ -613,8 +630,11 @@ impl Scene {
         let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
-        for s in &desc.shapes {
+        // Which description shape each primitive comes from (for messages).
+        let mut primitive_shape = Vec::new();
+        for (shape_index, s) in desc.shapes.iter().enumerate() {
             let shapes = shape_geometry(s);
+            primitive_shape.resize(primitive_shape.len() + shapes.len(), shape_index);
             let alpha = effective_alpha(s.alpha.as_ref());
             for shape in shapes {
                 let light = s.area_light.filter(|a| !a.radiance.is_black()).map(|a| {
@@ -700,6 +720,21 @@ impl Scene {
             .map(|p: &Primitive| p.shape.bounds())
             .chain(instances.iter().map(Instance::bounds))
             .collect();
+        let first_instance = primitives.len();
+        if let Some(i) = bounds.iter().position(|b| !within_scene_limit(b)) {
+            let which = if i < first_instance {
+                format!("shape {}", primitive_shape[i])
+            } else {
+                format!("object instance {}", i - first_instance)
+            };
+            return Err(invalid(
+                "scene size",
+                format!(
+                    "{which} reaches {:e} in world space, past the limit of {MAX_SCENE_COORDINATE:e} (32-bit floats lose distances beyond it; scale the scene down)",
+                    farthest(&bounds[i])
+                ),
+            ));
+        }
         let bvh = Bvh::build(&bounds);
         // Distant and infinite lights need the scene's size before their power is known.
         let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));

@@ -13,7 +13,7 @@ mod build;
 mod description;
 mod instance;
 
-pub use build::BuildError;
+pub use build::{BuildError, MAX_PIXELS, MAX_RESOLUTION, MAX_SCENE_COORDINATE};
 pub use description::*;
 pub use instance::{Instance, ObjectGeometry};
 

@@ -1,5 +1,6 @@
-//! Atomic file writes: write to `.name.tmp-<pid>-<n>` beside the target, flush and sync,
-//! then rename over the target; on any error the temporary file is removed.
+//! Atomic file writes: [`stage`] writes `.name.tmp-<pid>-<n>` beside the target, flushed
+//! and synced; [`Staged::commit`] renames it over the target. On any error, or when a
+//! staged file is dropped uncommitted, the temporary file is removed.
 
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
@@ -11,15 +12,49 @@ use super::ImageError;
 /// Distinguishes temporary files of concurrent writes in one process.
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
-/// Write `path` atomically: `write` fills a buffered temporary file in the same directory,
-/// which then replaces `path`.
+/// A complete file written beside its target under a temporary name, not yet in place:
+/// [`Staged::commit`] renames it over the target; dropping it uncommitted removes it.
+#[derive(Debug)]
+#[must_use = "a staged file is removed unless committed"]
+pub struct Staged {
+    tmp: PathBuf,
+    target: PathBuf,
+    committed: bool,
+}
+
+impl Staged {
+    /// Move the file into place.
+    ///
+    /// # Errors
+    /// When the rename fails (the temporary file is then removed).
+    pub fn commit(mut self) -> Result<(), ImageError> {
+        fs::rename(&self.tmp, &self.target).map_err(|source| ImageError::Io {
+            path: self.target.clone(),
+            source,
+        })?;
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// Write the temporary file of `path` completely (flushed and synced) without putting it in
+/// place.
 ///
 /// # Errors
-/// Whatever `write` returns, or the I/O error of creating, syncing or renaming.
-pub fn write_atomically(
+/// Whatever `write` returns, or the I/O error of creating or syncing; nothing is left
+/// behind then.
+pub fn stage(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<File>) -> Result<(), ImageError>,
-) -> Result<(), ImageError> {
+) -> Result<Staged, ImageError> {
     let tmp = temp_path(path);
     let io_err = |source| ImageError::Io {
         path: path.to_path_buf(),
@@ -30,19 +65,18 @@ pub fn write_atomically(
         .create_new(true)
         .open(&tmp)
         .map_err(io_err)?;
-    let result = (|| {
-        let mut out = BufWriter::new(file);
-        write(&mut out)?;
-        out.flush().map_err(io_err)?;
-        let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
-        file.sync_all().map_err(io_err)?;
-        drop(file);
-        fs::rename(&tmp, path).map_err(io_err)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result
+    // From here on the temporary file is removed on any error, by the guard's drop.
+    let staged = Staged {
+        tmp,
+        target: path.to_path_buf(),
+        committed: false,
+    };
+    let mut out = BufWriter::new(file);
+    write(&mut out)?;
+    out.flush().map_err(io_err)?;
+    let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
+    file.sync_all().map_err(io_err)?;
+    Ok(staged)
 }
 
 fn temp_path(path: &Path) -> PathBuf {

@@ -16,7 +16,7 @@ use mcrender_core::color::Rgb;
 
 pub use self::exr::{read_exr, read_exr_metadata, write_exr_layers, write_exr_layers_with_metadata};
 pub use self::pfm::read_pfm;
-pub use self::read::{read_image, read_image_encoded, ColorEncoding};
+pub use self::read::{decode_image, image_dimensions, read_image, read_image_encoded, ColorEncoding, ImageFormat};
 
 /// A linear RGB image, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,6 +95,25 @@ pub enum ImageError {
 /// An unknown extension, a pixel count that does not match the size, or an I/O or
 /// encoder failure (the target is then left untouched).
 pub fn write_image(path: &Path, img: &ImageRgb) -> Result<(), ImageError> {
+    stage_image(path, img)?.commit()
+}
+
+/// Write several images all or none: each is encoded completely beside its target first,
+/// and only when every one succeeded are they put in place (so a failing variance image
+/// does not leave the main image behind).
+///
+/// # Errors
+/// As [`write_image`], for the first image that fails; no target is then touched.
+pub fn write_images(images: &[(&Path, &ImageRgb)]) -> Result<(), ImageError> {
+    let staged = images
+        .iter()
+        .map(|(path, img)| stage_image(path, img))
+        .collect::<Result<Vec<_>, _>>()?;
+    staged.into_iter().try_for_each(atomic::Staged::commit)
+}
+
+/// Encode `img` for `path` into a temporary file beside it.
+fn stage_image(path: &Path, img: &ImageRgb) -> Result<atomic::Staged, ImageError> {
     check_size(path, img.width, img.height, img.pixels.len())?;
     let extension = path
         .extension()
@@ -102,8 +121,8 @@ pub fn write_image(path: &Path, img: &ImageRgb) -> Result<(), ImageError> {
         .unwrap_or("")
         .to_ascii_lowercase();
     match extension.as_str() {
-        "png" => png::write_png(path, img),
-        "exr" => write_exr_layers(path, img.width, img.height, &[("", &img.pixels)]),
+        "png" => png::stage_png(path, img),
+        "exr" => self::exr::stage_exr_layers(path, img.width, img.height, &[("", &img.pixels)], &[]),
         _ => Err(ImageError::UnsupportedFormat {
             path: path.to_path_buf(),
             extension,

@@ -18,15 +18,39 @@ pub fn read_pfm(path: &Path) -> Result<ImageRgb, ImageError> {
         path: path.to_path_buf(),
         source,
     })?;
-    decode_pfm(&bytes).map_err(|message| ImageError::Codec {
-        path: path.to_path_buf(),
-        message: format!("not a valid PFM file: {message}"),
-    })
+    decode_pfm_file(path, &bytes)
 }
 
-/// Decode PFM bytes.
-fn decode_pfm(bytes: &[u8]) -> Result<ImageRgb, String> {
-    // Three whitespace-separated header fields after the magic, then one whitespace byte.
+/// Decode PFM `bytes`; `path` names the file in errors.
+pub(super) fn decode_pfm_file(path: &Path, bytes: &[u8]) -> Result<ImageRgb, ImageError> {
+    decode_pfm(bytes).map_err(|message| invalid(path, &message))
+}
+
+/// The size in a PFM header.
+pub(super) fn pfm_dimensions(path: &Path, bytes: &[u8]) -> Result<(u64, u64), ImageError> {
+    let h = header(bytes).map_err(|message| invalid(path, &message))?;
+    Ok((u64::from(h.width), u64::from(h.height)))
+}
+
+fn invalid(path: &Path, message: &str) -> ImageError {
+    ImageError::Codec {
+        path: path.to_path_buf(),
+        message: format!("not a valid PFM file: {message}"),
+    }
+}
+
+/// The fields of a PFM header and where the data starts.
+struct Header {
+    channels: u64,
+    width: u32,
+    height: u32,
+    scale: f32,
+    data_start: usize,
+}
+
+/// Parse the header: three whitespace-separated fields after the magic, then one
+/// whitespace byte.
+fn header(bytes: &[u8]) -> Result<Header, String> {
     let mut pos = 0;
     let mut next_token = || -> Result<String, String> {
         while pos < bytes.len() && bytes[pos].is_ascii_whitespace() {
@@ -46,7 +70,7 @@ fn decode_pfm(bytes: &[u8]) -> Result<ImageRgb, String> {
     let channels = match next_token()?.as_str() {
         "PF" => 3,
         "Pf" => 1,
-        other => return Err(format!("bad magic \"{other}\" (expected PF or Pf)")),
+        other => return Err(format!("bad magic {} (expected PF or Pf)", crate::error::quoted(other))),
     };
     let width: u32 = next_token()?.parse().map_err(|_| "bad width".to_string())?;
     let height: u32 = next_token()?.parse().map_err(|_| "bad height".to_string())?;
@@ -54,9 +78,27 @@ fn decode_pfm(bytes: &[u8]) -> Result<ImageRgb, String> {
     if width == 0 || height == 0 || !scale.is_finite() || scale == 0.0 {
         return Err(format!("bad size {width}x{height} or scale {scale}"));
     }
-    let count = u64::from(width) * u64::from(height) * channels;
+    Ok(Header {
+        channels,
+        width,
+        height,
+        scale,
+        data_start: pos,
+    })
+}
+
+/// Decode PFM bytes.
+fn decode_pfm(bytes: &[u8]) -> Result<ImageRgb, String> {
+    let Header {
+        channels,
+        width,
+        height,
+        scale,
+        data_start: pos,
+    } = header(bytes)?;
+    let count = (u64::from(width) * u64::from(height)).saturating_mul(channels);
     let data = bytes.get(pos.min(bytes.len())..).unwrap_or_default();
-    if (data.len() as u64) < count * 4 {
+    if (data.len() as u64) / 4 < count {
         return Err(format!(
             "{} bytes of data for a {width}x{height} image of {channels} channel(s)",
             data.len()

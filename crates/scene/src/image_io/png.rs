@@ -7,7 +7,7 @@ use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 use mcrender_core::color::{linear_to_srgb, Rgb};
 
-use super::atomic::write_atomically;
+use super::atomic::{stage, Staged};
 use super::{ImageError, ImageRgb};
 
 /// One linear channel as an 8-bit sRGB value (NaN becomes 0).
@@ -19,14 +19,14 @@ pub fn encode_channel(v: f32) -> u8 {
     (linear_to_srgb(v) * 255.0).round().clamp(0.0, 255.0) as u8
 }
 
-/// Write `img` as an 8-bit sRGB PNG, atomically.
-pub(super) fn write_png(path: &Path, img: &ImageRgb) -> Result<(), ImageError> {
+/// Write `img` as an 8-bit sRGB PNG beside `path`, ready to be put in place.
+pub(super) fn stage_png(path: &Path, img: &ImageRgb) -> Result<Staged, ImageError> {
     let bytes: Vec<u8> = img
         .pixels
         .iter()
         .flat_map(|p: &Rgb| [encode_channel(p.r), encode_channel(p.g), encode_channel(p.b)])
         .collect();
-    write_atomically(path, |out| {
+    stage(path, |out| {
         PngEncoder::new(out)
             .write_image(&bytes, img.width, img.height, ExtendedColorType::Rgb8)
             .map_err(|e| ImageError::Codec {

@@ -2,11 +2,12 @@
 //! TGA are 8- or 16-bit values decoded from sRGB (pbrt-v4's default for such files; alpha is
 //! dropped), or with another [`ColorEncoding`] through [`read_image_encoded`].
 
+use std::io::Cursor;
 use std::path::Path;
 
 use mcrender_core::color::{srgb_to_linear, Rgb};
 
-use super::{read_exr, read_pfm, ImageError, ImageRgb};
+use super::{ImageError, ImageRgb};
 
 /// Read `path` as a linear RGB image, by its extension: `.exr`, `.pfm`, `.png`, `.jpg` /
 /// `.jpeg` or `.tga`.
@@ -47,25 +48,103 @@ impl ColorEncoding {
 /// # Errors
 /// An unknown extension, or a file that cannot be read or decoded.
 pub fn read_image_encoded(path: &Path, encoding: ColorEncoding) -> Result<ImageRgb, ImageError> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    match extension.as_str() {
-        "exr" => read_exr(path),
-        "pfm" => read_pfm(path),
-        "png" | "jpg" | "jpeg" | "tga" => read_8bit(path, encoding),
-        _ => Err(ImageError::InvalidImage {
-            path: path.to_path_buf(),
-            message: format!("unsupported image format \"{extension}\" (use .exr, .pfm, .png, .jpg, .jpeg or .tga)"),
-        }),
+    let format = ImageFormat::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|source| ImageError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    decode_image(path, format, &bytes, encoding)
+}
+
+/// The image file formats read, chosen by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// OpenEXR (linear floats).
+    Exr,
+    /// Portable float map (linear floats).
+    Pfm,
+    /// PNG (8 or 16 bits).
+    Png,
+    /// JPEG.
+    Jpeg,
+    /// Truevision TGA.
+    Tga,
+}
+
+impl ImageFormat {
+    /// The format of `path` by its extension.
+    ///
+    /// # Errors
+    /// An extension that names none of the formats.
+    pub fn from_path(path: &Path) -> Result<Self, ImageError> {
+        let extension = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        match extension.as_str() {
+            "exr" => Ok(Self::Exr),
+            "pfm" => Ok(Self::Pfm),
+            "png" => Ok(Self::Png),
+            "jpg" | "jpeg" => Ok(Self::Jpeg),
+            "tga" => Ok(Self::Tga),
+            _ => Err(ImageError::InvalidImage {
+                path: path.to_path_buf(),
+                message: format!(
+                    "unsupported image format {} (use .exr, .pfm, .png, .jpg, .jpeg or .tga)",
+                    crate::error::quoted(&extension)
+                ),
+            }),
+        }
+    }
+
+    fn codec(self) -> Option<image::ImageFormat> {
+        match self {
+            Self::Exr | Self::Pfm => None,
+            Self::Png => Some(image::ImageFormat::Png),
+            Self::Jpeg => Some(image::ImageFormat::Jpeg),
+            Self::Tga => Some(image::ImageFormat::Tga),
+        }
     }
 }
 
-/// Decode an 8- or 16-bit image and undo its encoding.
-fn read_8bit(path: &Path, encoding: ColorEncoding) -> Result<ImageRgb, ImageError> {
-    let img = image::open(path).map_err(|e| match e {
+/// The width and height of the image in `bytes`, from its header alone (nothing is
+/// decoded, so this is cheap even for a huge image). `path` names the file in errors.
+///
+/// # Errors
+/// When the header cannot be read.
+pub fn image_dimensions(path: &Path, format: ImageFormat, bytes: &[u8]) -> Result<(u64, u64), ImageError> {
+    match format.codec() {
+        None if format == ImageFormat::Exr => super::exr::exr_dimensions(path, bytes),
+        None => super::pfm::pfm_dimensions(path, bytes),
+        Some(f) => {
+            let reader = image::ImageReader::with_format(Cursor::new(bytes), f);
+            let (w, h) = reader.into_dimensions().map_err(|e| codec_error(path, e))?;
+            Ok((u64::from(w), u64::from(h)))
+        }
+    }
+}
+
+/// Decode the image file `bytes` of `format` as linear RGB, 8- and 16-bit formats with
+/// `encoding`. `path` names the file in errors.
+///
+/// # Errors
+/// When the bytes are not a valid image of that format.
+pub fn decode_image(
+    path: &Path,
+    format: ImageFormat,
+    bytes: &[u8],
+    encoding: ColorEncoding,
+) -> Result<ImageRgb, ImageError> {
+    match format.codec() {
+        None if format == ImageFormat::Exr => super::exr::decode_exr(path, bytes),
+        None => super::pfm::decode_pfm_file(path, bytes),
+        Some(f) => decode_8bit(path, f, bytes, encoding),
+    }
+}
+
+fn codec_error(path: &Path, e: image::ImageError) -> ImageError {
+    match e {
         image::ImageError::IoError(source) => ImageError::Io {
             path: path.to_path_buf(),
             source,
@@ -74,18 +153,47 @@ fn read_8bit(path: &Path, encoding: ColorEncoding) -> Result<ImageRgb, ImageErro
             path: path.to_path_buf(),
             message: other.to_string(),
         },
-    })?;
-    let rgb = img.to_rgb32f();
-    let (width, height) = rgb.dimensions();
-    let pixels = rgb
-        .pixels()
-        .map(|p| {
-            Rgb::new(
-                encoding.to_linear(p[0]),
-                encoding.to_linear(p[1]),
-                encoding.to_linear(p[2]),
-            )
-        })
-        .collect();
+    }
+}
+
+/// Decode an 8- or 16-bit image and undo its encoding.
+fn decode_8bit(
+    path: &Path,
+    format: image::ImageFormat,
+    bytes: &[u8],
+    encoding: ColorEncoding,
+) -> Result<ImageRgb, ImageError> {
+    let img = image::ImageReader::with_format(Cursor::new(bytes), format)
+        .decode()
+        .map_err(|e| codec_error(path, e))?;
+    let (width, height) = (img.width(), img.height());
+    if width == 0 || height == 0 {
+        return Err(ImageError::InvalidImage {
+            path: path.to_path_buf(),
+            message: format!("empty image ({width}x{height})"),
+        });
+    }
+    let color = img.color();
+    let pixels = if color.bytes_per_pixel() == color.channel_count() {
+        // 8 bits a channel: 256 possible values, converted once each.
+        let table: Vec<f32> = (0..=255u8).map(|v| encoding.to_linear(f32::from(v) / 255.0)).collect();
+        let rgb = img.to_rgb8();
+        drop(img);
+        rgb.pixels()
+            .map(|p| Rgb::new(table[p[0] as usize], table[p[1] as usize], table[p[2] as usize]))
+            .collect()
+    } else {
+        let rgb = img.to_rgb32f();
+        drop(img);
+        rgb.pixels()
+            .map(|p| {
+                Rgb::new(
+                    encoding.to_linear(p[0]),
+                    encoding.to_linear(p[1]),
+                    encoding.to_linear(p[2]),
+                )
+            })
+            .collect()
+    };
     Ok(ImageRgb { width, height, pixels })
 }

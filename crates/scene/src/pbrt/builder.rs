@@ -8,6 +8,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::Mat4;
 use mcrender_core::math::Transform;
@@ -21,6 +22,8 @@ use super::materials::resolve_material;
 use super::params::ParamSet;
 use super::LoadedScene;
 use crate::error::{Location, SceneError};
+use crate::limits::{format_bytes, LoadLimits};
+use crate::source::FileSource;
 
 /// Where in the file we are: before or after `WorldBegin`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,13 +72,25 @@ pub struct SceneBuilder {
     pub(super) instances: Vec<mcrender_core::scene::InstanceDesc>,
     warnings: Vec<String>,
     warned_transform_begin: bool,
+    /// Where files are read from.
+    pub(super) files: Arc<dyn FileSource>,
+    /// What the loader may read and allocate.
+    pub(super) limits: LoadLimits,
+    /// Bytes reserved so far for images and meshes ([`Self::reserve_memory`]).
+    pub(super) memory_used: u64,
+    /// The part of [`Self::memory_used`] that images take.
+    pub(super) image_bytes: u64,
 }
 
 impl SceneBuilder {
     /// A builder for a scene whose top-level file lives in `search_dir`.
     #[must_use]
-    pub fn new(search_dir: &Path) -> Self {
+    pub fn new(search_dir: &Path, files: Arc<dyn FileSource>, limits: LoadLimits) -> Self {
         Self {
+            files,
+            limits,
+            memory_used: 0,
+            image_bytes: 0,
             block: Block::Options,
             state: GraphicsState::default(),
             scopes: Vec::new(),
@@ -103,6 +118,27 @@ impl SceneBuilder {
         }
     }
 
+    /// Count `bytes` about to be allocated for `what` against the memory limit.
+    ///
+    /// # Errors
+    /// When the total would pass [`LoadLimits::max_memory`]; the message names both figures.
+    pub fn reserve_memory(&mut self, bytes: u64, what: &str, loc: &Location) -> Result<(), SceneError> {
+        let total = self.memory_used.saturating_add(bytes);
+        if total > self.limits.max_memory {
+            return Err(SceneError::invalid(
+                loc,
+                format!(
+                    "{what} needs about {} (scene so far: {}), over the memory limit of {} (see --max-memory)",
+                    format_bytes(bytes),
+                    format_bytes(self.memory_used),
+                    format_bytes(self.limits.max_memory)
+                ),
+            ));
+        }
+        self.memory_used = total;
+        Ok(())
+    }
+
     /// Record a warning: `file:line:col: warning: message`.
     pub fn warn(&mut self, loc: &Location, message: impl AsRef<str>) {
         self.warnings.push(format!("{loc}: warning: {}", message.as_ref()));
@@ -119,11 +155,11 @@ impl SceneBuilder {
     #[must_use]
     pub fn resolve(&self, name: &str) -> PathBuf {
         let primary = self.search_dir.join(name);
-        if primary.exists() {
+        if self.files.exists(&primary) {
             return primary;
         }
         let secondary = self.current_dir.join(name);
-        if secondary.exists() {
+        if self.files.exists(&secondary) {
             secondary
         } else {
             primary
@@ -344,6 +380,7 @@ impl SceneBuilder {
             },
             output_filename: self.output_filename,
             warnings: self.warnings,
+            image_bytes: self.image_bytes,
         })
     }
 }

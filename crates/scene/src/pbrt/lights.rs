@@ -33,10 +33,11 @@ use mcrender_core::sampling::equal_area_square_to_sphere;
 use mcrender_core::scene::{AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, SpotLightDesc};
 
 use super::builder::SceneBuilder;
+use super::files::ImageUse;
 use super::params::{ParamSet, ParamType};
 use super::spectrum_rgb::SpectrumRole;
-use crate::error::{io_error_text, Location, SceneError};
-use crate::image_io::{read_image, ImageError, ImageRgb};
+use crate::error::{Location, SceneError};
+use crate::image_io::{ColorEncoding, ImageRgb};
 
 impl SceneBuilder {
     /// `AreaLightSource "diffuse" ...`: emission for subsequent shapes in this scope.
@@ -166,7 +167,7 @@ impl SceneBuilder {
         })
     }
 
-    fn infinite_light(&self, params: &ParamSet, loc: &Location) -> Result<LightDesc, SceneError> {
+    fn infinite_light(&mut self, params: &ParamSet, loc: &Location) -> Result<LightDesc, SceneError> {
         if let Some(p) = params.get("portal") {
             p.mark_used();
             return Err(SceneError::unsupported(
@@ -232,24 +233,8 @@ impl SceneBuilder {
     }
 
     /// Read an environment image and check it suits `mapping`.
-    fn read_env_image(&self, filename: &str, loc: &Location, mapping: EnvMapping) -> Result<ImageRgb, SceneError> {
-        let path = self.resolve(filename);
-        let image = read_image(&path).map_err(|e| match e {
-            ImageError::Io { source, .. } => SceneError::io(
-                loc,
-                format!("cannot open image \"{filename}\": {}", io_error_text(&source)),
-            ),
-            ImageError::Codec { message, .. } | ImageError::InvalidImage { message, .. } => {
-                SceneError::invalid(loc, format!("cannot read image \"{filename}\": {message}"))
-            }
-            other => SceneError::invalid(loc, format!("cannot read image \"{filename}\": {other}")),
-        })?;
-        if image.pixels.iter().any(|p| !p.is_finite()) {
-            return Err(SceneError::invalid(
-                loc,
-                format!("image \"{filename}\" has infinite or not-a-number pixels and so is not suitable as a light"),
-            ));
-        }
+    fn read_env_image(&mut self, filename: &str, loc: &Location, mapping: EnvMapping) -> Result<ImageRgb, SceneError> {
+        let image = self.read_image_file(filename, loc, ColorEncoding::Srgb, ImageUse::Environment)?;
         if mapping == EnvMapping::EqualArea && image.width != image.height {
             return Err(SceneError::invalid(
                 loc,

@@ -27,6 +27,7 @@
 //! `shapes`, `textures`) gives them meaning, `transform` has pbrt's transform matrices.
 
 mod builder;
+mod files;
 mod graphics_state;
 mod instancing;
 mod lights;
@@ -47,6 +48,8 @@ use std::sync::Arc;
 use mcrender_core::scene::SceneDescription;
 
 use crate::error::{io_error_text, Location, SceneError};
+use crate::limits::LoadLimits;
+use crate::source::{DiskFiles, FileSource};
 
 /// A loaded scene: what the renderer needs, where pbrt would write the image, and the
 /// warnings to show the user.
@@ -58,6 +61,28 @@ pub struct LoadedScene {
     pub output_filename: Option<String>,
     /// Warnings, each `file:line:col: warning: ...`.
     pub warnings: Vec<String>,
+    /// Estimated bytes the images read (textures, environment maps) take while loading and
+    /// rendering; the meshes are in [`Self::description`].
+    pub image_bytes: u64,
+}
+
+/// How to load: where files come from and what the load may cost.
+#[derive(Clone, Debug)]
+pub struct LoadOptions {
+    /// The files (the disk by default; [`MemoryFiles`](crate::source::MemoryFiles) for
+    /// scenes held in memory).
+    pub files: Arc<dyn FileSource>,
+    /// Memory limit for images and meshes.
+    pub limits: LoadLimits,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        Self {
+            files: Arc::new(DiskFiles),
+            limits: LoadLimits::default(),
+        }
+    }
 }
 
 /// Load a pbrt-v4 scene file. Relative paths in it (`Include`, `plymesh` files) are
@@ -67,8 +92,17 @@ pub struct LoadedScene {
 /// When the file cannot be read, or on the first malformed, invalid or unsupported input;
 /// the error's display reads `file:line:col: message`.
 pub fn load_file(path: &Path) -> Result<LoadedScene, SceneError> {
+    load_file_with(path, &LoadOptions::default())
+}
+
+/// Load a pbrt-v4 scene file as [`load_file`] does, reading it and every file it refers to
+/// from `options.files` and within `options.limits`.
+///
+/// # Errors
+/// As [`load_file`], and when the images and meshes would pass the memory limit.
+pub fn load_file_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let name: Arc<str> = path.display().to_string().into();
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = options.files.read(path).map_err(|e| {
         SceneError::io(
             &Location::file_only(name.clone()),
             format!("cannot open scene file: {}", io_error_text(&e)),
@@ -76,7 +110,7 @@ pub fn load_file(path: &Path) -> Result<LoadedScene, SceneError> {
     })?;
     let source = parser::decode(&bytes, &name)?;
     let base_dir = path.parent().unwrap_or_else(|| Path::new(""));
-    load_str(&source, &name, base_dir)
+    load_str_with(&source, &name, base_dir, options)
 }
 
 /// Load a pbrt-v4 scene from text. `name` is the file name used in messages; `base_dir`
@@ -86,5 +120,33 @@ pub fn load_file(path: &Path) -> Result<LoadedScene, SceneError> {
 /// On the first malformed, invalid or unsupported input; the error's display reads
 /// `name:line:col: message`.
 pub fn load_str(source: &str, name: &str, base_dir: &Path) -> Result<LoadedScene, SceneError> {
-    parser::Parser::new(source, name, base_dir).run()
+    load_str_with(source, name, base_dir, &LoadOptions::default())
+}
+
+/// Load a pbrt-v4 scene from text as [`load_str`] does, with the files and limits of
+/// `options`.
+///
+/// # Errors
+/// As [`load_str`], and when the images and meshes would pass the memory limit.
+pub fn load_str_with(
+    source: &str,
+    name: &str,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<LoadedScene, SceneError> {
+    parser::Parser::new(source, name, base_dir, options).run()
+}
+
+/// The number of tokens in `source` (shown as `name` in messages): a check that the text
+/// splits into pbrt tokens, for tools and the tokenizer's fuzz target.
+///
+/// # Errors
+/// The first unterminated string or bad escape.
+pub fn count_tokens(source: &str, name: &str) -> Result<usize, SceneError> {
+    let mut tokens = tokenizer::Tokenizer::new(source, name.into());
+    let mut n = 0;
+    while tokens.next_token()?.is_some() {
+        n += 1;
+    }
+    Ok(n)
 }

@@ -13,7 +13,7 @@ use super::builder::SceneBuilder;
 use super::params::{number, Param, ParamSet};
 use super::tokenizer::{Token, TokenKind, Tokenizer};
 use super::transform::{from_pbrt_array, look_at, rotate, scale, translate};
-use super::LoadedScene;
+use super::{LoadOptions, LoadedScene};
 use crate::error::{io_error_text, Location, SceneError};
 
 /// How deeply `Include` may nest (a file including itself hits this).
@@ -40,7 +40,7 @@ impl Parser {
     /// A parser for `source`, shown as `name` in messages; relative file names are resolved
     /// against `base_dir`.
     #[must_use]
-    pub fn new(source: &str, name: &str, base_dir: &Path) -> Self {
+    pub fn new(source: &str, name: &str, base_dir: &Path, options: &LoadOptions) -> Self {
         let file: Arc<str> = name.into();
         Self {
             last_end: Location::new(file.clone(), 1, 1),
@@ -49,7 +49,7 @@ impl Parser {
                 dir: base_dir.to_path_buf(),
             }],
             peeked: None,
-            builder: SceneBuilder::new(base_dir),
+            builder: SceneBuilder::new(base_dir, options.files.clone(), options.limits),
         }
     }
 
@@ -424,7 +424,7 @@ impl Parser {
             ));
         }
         let path = self.builder.resolve(&name);
-        let bytes = std::fs::read(&path).map_err(|e| {
+        let bytes = self.builder.files.read(&path).map_err(|e| {
             SceneError::io(
                 loc,
                 format!("cannot open included file \"{name}\": {}", io_error_text(&e)),

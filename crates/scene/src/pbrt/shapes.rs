@@ -11,8 +11,7 @@ use mcrender_core::texture::effective_alpha;
 
 use super::builder::SceneBuilder;
 use super::params::{ParamSet, ParamType};
-use crate::error::{io_error_text, Location, SceneError};
-use crate::ply::{read_ply, PlyError};
+use crate::error::{Location, SceneError};
 
 /// A mesh in object space, before the CTM is applied.
 struct ObjectMesh {
@@ -199,14 +198,7 @@ impl SceneBuilder {
                 "Shape \"plymesh\" needs a \"string filename\" parameter",
             ));
         };
-        let path = self.resolve(&filename);
-        let mesh = read_ply(&path).map_err(|e| match e {
-            PlyError::Io(io) => SceneError::io(
-                loc,
-                format!("cannot open PLY file \"{filename}\": {}", io_error_text(&io)),
-            ),
-            PlyError::Format(msg) => SceneError::invalid(loc, format!("cannot read PLY file \"{filename}\": {msg}")),
-        })?;
+        let mesh = self.read_ply_file(&filename, loc)?;
         if mesh.skipped_faces > 0 {
             self.warn(
                 loc,

@@ -35,10 +35,11 @@ use mcrender_core::texture::{
 };
 
 use super::builder::SceneBuilder;
+use super::files::ImageUse;
 use super::params::{color_of, Param, ParamSet, ParamType, ParamValues};
 use super::spectrum_rgb::SpectrumRole;
-use crate::error::{io_error_text, Location, SceneError};
-use crate::image_io::{read_image_encoded, ColorEncoding, ImageError};
+use crate::error::{Location, SceneError};
+use crate::image_io::ColorEncoding;
 
 /// pbrt-v4 texture classes that are not implemented.
 const KNOWN_CLASSES: &[&str] = &[
@@ -419,22 +420,7 @@ impl SceneBuilder {
         if let Some(m) = self.textures.mipmaps.get(&key) {
             return Ok(m.clone());
         }
-        let image = read_image_encoded(&path, encoding).map_err(|e| match e {
-            ImageError::Io { source, .. } => SceneError::io(
-                loc,
-                format!("cannot open image \"{filename}\": {}", io_error_text(&source)),
-            ),
-            ImageError::Codec { message, .. } | ImageError::InvalidImage { message, .. } => {
-                SceneError::invalid(loc, format!("cannot read image \"{filename}\": {message}"))
-            }
-            other => SceneError::invalid(loc, format!("cannot read image \"{filename}\": {other}")),
-        })?;
-        if image.pixels.iter().any(|p| !p.is_finite()) {
-            return Err(SceneError::invalid(
-                loc,
-                format!("image \"{filename}\" has infinite or not-a-number pixels"),
-            ));
-        }
+        let image = self.read_image_file(filename, loc, encoding, ImageUse::Texture)?;
         let mipmap = Arc::new(MipMap::new(image.width, image.height, &image.pixels, wrap));
         self.textures.mipmaps.insert(key, mipmap.clone());
         Ok(mipmap)

@@ -8,7 +8,7 @@
 use std::fmt;
 use std::sync::Arc;
 
-use crate::error::{Location, SceneError};
+use crate::error::{quoted, Location, SceneError};
 
 /// What a token is.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,9 +43,9 @@ impl fmt::Display for TokenKind {
     /// How a token is named in "expected X, found Y" messages.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Word(w) => write!(f, "\"{w}\""),
-            Self::Number { text, .. } => write!(f, "\"{text}\""),
-            Self::Str(s) => write!(f, "string \"{s}\""),
+            Self::Word(w) => write!(f, "{}", quoted(w)),
+            Self::Number { text, .. } => write!(f, "{}", quoted(text)),
+            Self::Str(s) => write!(f, "string {}", quoted(s)),
             Self::OpenBracket => write!(f, "\"[\""),
             Self::CloseBracket => write!(f, "\"]\""),
         }

@@ -1,0 +1,144 @@
+//! Entry points shared by the cargo-fuzz targets (`fuzz/fuzz_targets/*.rs`) and the test
+//! that replays their corpus (`tests/fuzz_corpus.rs`), so that what the fuzzer found is
+//! checked by a plain `cargo test` through exactly the same code. Each takes arbitrary
+//! bytes and must return, whatever they are: no panic, no abort, no hang, and memory within
+//! [`MEMORY_LIMIT`].
+
+use std::path::Path;
+use std::sync::Arc;
+
+use crate::image_io::{decode_image, image_dimensions, ColorEncoding, ImageFormat};
+use crate::limits::{image_texture_bytes, LoadLimits};
+use crate::pbrt::{load_file_with, LoadOptions};
+use crate::source::MemoryFiles;
+
+/// Memory the loader may use for images and meshes in a fuzz run.
+pub const MEMORY_LIMIT: u64 = 256 << 20;
+
+/// The targets, by the name of their fuzz target and corpus directory.
+pub const TARGETS: &[&str] = &["tokenizer", "parser", "loader", "ply", "png", "exr", "pfm", "tga"];
+
+/// Run `data` through the target named `target` (one of [`TARGETS`]).
+///
+/// # Panics
+/// On an unknown target name (and, by the bug it reveals, on any input that panics).
+pub fn run(target: &str, data: &[u8]) {
+    match target {
+        "tokenizer" => tokenizer(data),
+        "parser" => parser(data),
+        "loader" => loader(data),
+        "ply" => ply(data),
+        "png" => image(ImageFormat::Png, data),
+        "exr" => image(ImageFormat::Exr, data),
+        "pfm" => image(ImageFormat::Pfm, data),
+        "tga" => image(ImageFormat::Tga, data),
+        other => panic!("unknown fuzz target {other}"),
+    }
+}
+
+/// Split text into pbrt tokens, and print every error as the command line would.
+pub fn tokenizer(data: &[u8]) {
+    if let Ok(text) = std::str::from_utf8(data) {
+        if let Err(e) = crate::pbrt::count_tokens(text, "fuzz.pbrt") {
+            check_message(&e.to_string());
+        }
+    }
+}
+
+/// Parse and build a scene with no other files.
+pub fn parser(data: &[u8]) {
+    let mut files = MemoryFiles::new();
+    files.insert("fuzz.pbrt", data.to_vec());
+    load(files);
+}
+
+/// Marker that starts each extra file in a [`loader`] input: `\n--8<-- NAME\n` then the
+/// file's bytes up to the next marker.
+pub const FILE_MARKER: &[u8] = b"\n--8<-- ";
+
+/// Load a scene with the files it refers to, all in memory: the input is the scene text,
+/// then any number of `FILE_MARKER NAME\n BYTES` parts (PLY meshes, images, includes).
+pub fn loader(data: &[u8]) {
+    load(split_files(data));
+}
+
+/// The in-memory file set of a [`loader`] input: `fuzz.pbrt` and the named parts.
+#[must_use]
+pub fn split_files(data: &[u8]) -> MemoryFiles {
+    let mut files = MemoryFiles::new();
+    let mut parts = split(data, FILE_MARKER).into_iter();
+    files.insert("fuzz.pbrt", parts.next().unwrap_or_default().to_vec());
+    for part in parts {
+        let (name, bytes) = match part.iter().position(|&b| b == b'\n') {
+            Some(i) => (&part[..i], &part[i + 1..]),
+            None => (part, &[][..]),
+        };
+        files.insert(String::from_utf8_lossy(name).trim(), bytes.to_vec());
+    }
+    files
+}
+
+fn split<'a>(data: &'a [u8], marker: &[u8]) -> Vec<&'a [u8]> {
+    let mut parts = Vec::new();
+    let mut start = 0;
+    let mut i = 0;
+    while i + marker.len() <= data.len() {
+        if &data[i..i + marker.len()] == marker {
+            parts.push(&data[start..i]);
+            i += marker.len();
+            start = i;
+        } else {
+            i += 1;
+        }
+    }
+    parts.push(&data[start..]);
+    parts
+}
+
+fn load(files: MemoryFiles) {
+    let options = LoadOptions {
+        files: Arc::new(files),
+        limits: LoadLimits {
+            max_memory: MEMORY_LIMIT,
+        },
+    };
+    match load_file_with(Path::new("fuzz.pbrt"), &options) {
+        Ok(scene) => {
+            // What the renderer would do next: build the render-ready scene.
+            if let Err(e) = mcrender_core::scene::Scene::build(&scene.description) {
+                check_message(&e.to_string());
+            }
+        }
+        Err(e) => check_message(&e.to_string()),
+    }
+}
+
+/// Read a PLY mesh.
+pub fn ply(data: &[u8]) {
+    if let Err(e) = crate::ply::read_ply_bytes(data) {
+        check_message(&e.to_string());
+    }
+}
+
+/// Decode an image as the loader does: header first, refused when too large, then decoded.
+pub fn image(format: ImageFormat, data: &[u8]) {
+    let path = Path::new("fuzz.img");
+    match image_dimensions(path, format, data) {
+        Ok((w, h)) if image_texture_bytes(w, h) <= MEMORY_LIMIT => {
+            if let Ok(img) = decode_image(path, format, data, ColorEncoding::Srgb) {
+                assert_eq!(img.pixels.len() as u64, u64::from(img.width) * u64::from(img.height));
+            }
+        }
+        Ok(_) => {}
+        Err(e) => check_message(&e.to_string()),
+    }
+}
+
+/// Error messages are one line without control characters, and short.
+fn check_message(message: &str) {
+    assert!(
+        !message.chars().any(char::is_control),
+        "control character in message: {message:?}"
+    );
+    assert!(message.len() < 4000, "message of {} bytes", message.len());
+}

@@ -1,0 +1,84 @@
+//! Replays the fuzzers' kept inputs on stable, through the same entry points as the
+//! cargo-fuzz targets (`mcrender_scene::fuzzing`): every file of `fuzz/seeds/TARGET` and
+//! `fuzz/regressions/TARGET` (the inputs that once crashed, hung or ran out of memory, each
+//! fixed) must return without a panic and quickly.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use mcrender_scene::fuzzing::{run, TARGETS};
+
+/// An input that takes longer than this is a hang (libFuzzer's limit in bench/fuzz.sh is 10 s).
+const SLOW: Duration = Duration::from_secs(10);
+
+fn fuzz_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz")
+}
+
+fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| p.is_file())
+                .collect()
+        })
+        .unwrap_or_default();
+    out.sort();
+    out
+}
+
+#[test]
+fn every_kept_fuzz_input_replays_without_panic_or_hang() {
+    let mut failures = Vec::new();
+    let mut replayed = 0;
+    for target in TARGETS {
+        let mut target_files = 0;
+        for kind in ["seeds", "regressions"] {
+            for path in files(&fuzz_dir().join(kind).join(target)) {
+                let data = std::fs::read(&path).unwrap();
+                let start = Instant::now();
+                let result = std::panic::catch_unwind(|| run(target, &data));
+                let took = start.elapsed();
+                if result.is_err() {
+                    failures.push(format!("{target}: {} panicked", path.display()));
+                } else if took > SLOW {
+                    failures.push(format!("{target}: {} took {took:?}", path.display()));
+                }
+                target_files += 1;
+            }
+        }
+        assert!(target_files > 0, "no seeds or regressions for fuzz target {target}");
+        replayed += target_files;
+    }
+    println!("replayed {replayed} fuzz inputs");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn loader_inputs_split_into_named_files() {
+    use mcrender_scene::source::FileSource;
+    let files = mcrender_scene::fuzzing::split_files(b"scene\n--8<-- a.ply\nply\n--8<-- t.png\n\x89PNG");
+    assert_eq!(files.read(Path::new("fuzz.pbrt")).unwrap(), b"scene");
+    assert_eq!(files.read(Path::new("a.ply")).unwrap(), b"ply");
+    assert_eq!(files.read(Path::new("t.png")).unwrap(), b"\x89PNG");
+}
+
+#[test]
+fn loader_seeds_load_so_the_fuzzer_starts_from_working_scenes() {
+    use std::sync::Arc;
+
+    use mcrender_scene::pbrt::{load_file_with, LoadOptions};
+    for path in files(&fuzz_dir().join("seeds/loader")) {
+        let data = std::fs::read(&path).unwrap();
+        let options = LoadOptions {
+            files: Arc::new(mcrender_scene::fuzzing::split_files(&data)),
+            ..LoadOptions::default()
+        };
+        let scene =
+            load_file_with(Path::new("fuzz.pbrt"), &options).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert!(scene.image_bytes > 0, "{}: no image was read", path.display());
+        assert!(!scene.description.shapes.is_empty());
+    }
+}

@@ -1,0 +1,100 @@
+//! Regression tests for issue 10's loader bugs, each named after it.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use mcrender_core::color::Rgb;
+use mcrender_scene::image_io::{write_images, ImageRgb};
+use mcrender_scene::limits::LoadLimits;
+use mcrender_scene::pbrt::{load_file, load_file_with, LoadOptions};
+
+/// An uncompressed 24-bit TGA of `n` x `n` (a gradient, so it is not all one value).
+fn write_tga(path: &Path, n: u16) {
+    let mut bytes = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    bytes.extend(n.to_le_bytes());
+    bytes.extend(n.to_le_bytes());
+    bytes.extend([24, 0]);
+    let row: Vec<u8> = (0..usize::from(n) * 3).map(|i| (i * 7 % 256) as u8).collect();
+    for _ in 0..n {
+        bytes.extend(&row);
+    }
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// A scene of `shapes` spheres all using an image texture from `image`.
+fn write_scene(dir: &Path, image: &str, shapes: usize) -> std::path::PathBuf {
+    let mut s = format!(
+        "WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"{image}\"\nMaterial \"diffuse\" \"texture reflectance\" \"t\"\n"
+    );
+    for i in 0..shapes {
+        s += &format!("Translate {i} 0 0 Shape \"sphere\" \"float radius\" [ 0.1 ]\n");
+    }
+    let path = dir.join("scene.pbrt");
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+#[test]
+fn image_texture_key_is_not_built_over_every_texel() {
+    // The material lookup key was format!("{desc:?}") over every texel, once per shape:
+    // a 4096x4096 texture took 18 s and 3.6 GB to load.
+    let dir = tempfile::tempdir().unwrap();
+    write_tga(&dir.path().join("t.tga"), 4096);
+    let path = write_scene(dir.path(), "t.tga", 50);
+    let start = Instant::now();
+    let scene = load_file(&path).unwrap();
+    let took = start.elapsed();
+    assert_eq!(
+        scene.description.materials.len(),
+        1,
+        "one material shared by all shapes"
+    );
+    let debug = format!("{:?}", scene.description.materials);
+    assert!(debug.len() < 10_000, "Debug of the materials is {} bytes", debug.len());
+    assert!(debug.contains("4096x4096"), "{debug}");
+    // About 2 s on 2 busy cores; the bug took 18 s.
+    assert!(took < Duration::from_secs(12), "4096x4096 texture took {took:?}");
+}
+
+#[test]
+fn image_texture_8192_is_refused_before_decoding_not_aborted() {
+    let dir = tempfile::tempdir().unwrap();
+    write_tga(&dir.path().join("t.tga"), 8192);
+    let path = write_scene(dir.path(), "t.tga", 2);
+    let options = LoadOptions {
+        limits: LoadLimits { max_memory: 1 << 30 },
+        ..LoadOptions::default()
+    };
+    let start = Instant::now();
+    let err = load_file_with(&path, &options).unwrap_err().to_string();
+    assert!(
+        err.contains("scene.pbrt:2:") && err.contains("8192x8192") && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    // Refused from the header: no time spent decoding.
+    assert!(start.elapsed() < Duration::from_secs(5), "{:?}", start.elapsed());
+}
+
+#[test]
+fn failing_variance_output_leaves_the_main_image_behind_no_more() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = dir.path().join("a.exr");
+    let good = ImageRgb::new(2, 2);
+    // The second image cannot be written (its pixel count is wrong): neither appears.
+    let bad = ImageRgb {
+        width: 3,
+        height: 3,
+        pixels: vec![Rgb::BLACK; 2],
+    };
+    let var = dir.path().join("v.exr");
+    assert!(write_images(&[(&main, &good), (&var, &bad)]).is_err());
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    // A directory that vanished: the same.
+    let gone = dir.path().join("gone/v.exr");
+    assert!(write_images(&[(&main, &good), (&gone, &good)]).is_err());
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+    // Both good: both written.
+    write_images(&[(&main, &good), (&var, &good)]).unwrap();
+    assert!(main.exists() && var.exists());
+}
