@@ -3,6 +3,7 @@
 //! Exit codes: 0 success, 2 bad input (unreadable or malformed scene, absurd parameters,
 //! unwritable output), with a message on stderr naming what is wrong.
 
+mod bench_rays_cmd;
 mod builtin;
 mod convert_cmd;
 mod diff_cmd;
@@ -41,6 +42,9 @@ enum Command {
     /// Estimate pi from random points and show the variance falling as 1/N (the lecture's
     /// coconut).
     Pi(pi_cmd::PiArgs),
+    /// Trace a fixed list of rays against a PLY mesh: BVH build time and rays per second
+    /// (the interface `bench/rays.sh` also feeds to Embree).
+    BenchRays(bench_rays_cmd::BenchRaysArgs),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +57,7 @@ fn main() -> ExitCode {
         Some(Command::Diff(args)) => diff_cmd::run(&args),
         Some(Command::Convert(args)) => convert_cmd::run(&args),
         Some(Command::Pi(args)) => pi_cmd::run(&args),
+        Some(Command::BenchRays(args)) => bench_rays_cmd::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
     match result {
