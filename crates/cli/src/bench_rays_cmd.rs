@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::accel::Bvh;
+use mcrender_core::accel::{Bvh, WideBvh};
 use mcrender_core::math::{Bounds3, Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 use mcrender_scene::ply::read_ply;
@@ -37,6 +37,8 @@ pub enum Query {
 /// Which hierarchy to trace (for side-by-side comparisons; `wide` is what renders use).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Accel {
+    /// The 4-wide BVH.
+    Wide,
     /// The binary BVH, one triangle at a time.
     Binary,
 }
@@ -61,7 +63,7 @@ pub struct BenchRaysArgs {
     #[arg(long, value_name = "OUT.bin")]
     pub hits: Option<PathBuf>,
     /// The hierarchy to trace.
-    #[arg(long, value_enum, default_value_t = Accel::Binary)]
+    #[arg(long, value_enum, default_value_t = Accel::Wide)]
     pub accel: Accel,
 }
 
@@ -91,6 +93,7 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
         args.mesh.display(),
         triangles.len(),
         match args.accel {
+            Accel::Wide => "4-wide",
             Accel::Binary => "binary",
         },
         build_s,
@@ -136,16 +139,16 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
 
 /// The hierarchy being measured.
 enum Traceable {
+    Wide(WideBvh),
     Binary(Bvh),
 }
 
 impl Traceable {
     fn build(accel: Accel, triangles: &[Triangle]) -> Self {
+        let bounds: Vec<Bounds3> = triangles.par_iter().map(Triangle::bounds).collect();
         match accel {
-            Accel::Binary => {
-                let bounds: Vec<Bounds3> = triangles.iter().map(Triangle::bounds).collect();
-                Self::Binary(Bvh::build(&bounds))
-            }
+            Accel::Wide => Self::Wide(WideBvh::build(&bounds)),
+            Accel::Binary => Self::Binary(Bvh::build(&bounds)),
         }
     }
 
@@ -156,6 +159,11 @@ impl Traceable {
         let closest = |t: Option<f32>| t.unwrap_or(f32::INFINITY);
         let any = |b: bool| if b { 0.0 } else { f32::INFINITY };
         match (self, query) {
+            (Self::Wide(w), Query::Closest) => closest(
+                w.closest_hit(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)))
+                    .map(|(_, t)| t),
+            ),
+            (Self::Wide(w), Query::Any) => any(w.any_hit(ray, t_max, blocked)),
             (Self::Binary(b), Query::Closest) => closest(
                 b.closest_hit(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)))
                     .map(|(_, t)| t),

@@ -120,7 +120,7 @@ fn hits_agree_with_brute_force() {
         "the test rays should hit and miss: {hit_count}"
     );
 
-    for accel in ["binary"] {
+    for accel in ["wide", "binary"] {
         for threads in ["1", "2"] {
             let o = mcrender(
                 &[
