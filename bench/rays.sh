@@ -14,7 +14,7 @@ TRIS="${1:-1000000}"
 NRAYS="${2:-1000000}"
 VENV=target/bench-venv
 DATA="target/rays-${TRIS}-${NRAYS}"
-REPEAT=3
+REPEAT="${REPEAT:-3}"
 
 if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c "import embreex, numpy" 2>/dev/null; then
     echo "installing numpy and embreex into $VENV..." >&2
