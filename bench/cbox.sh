@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 SPP="${1:-256}"
 RES=256
 THREADS=2
-SHARED="$(cd .. && pwd)/shared"
+SHARED="${SHARED:-$(cd .. && pwd)/shared}"
 VENV="${PEERS_VENV:-/tmp/peers-venv}"
 OUT="$(mktemp -d)"
 

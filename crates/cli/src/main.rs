@@ -5,6 +5,7 @@
 //! what is wrong; 130 / 143 a render stopped by SIGINT / SIGTERM (image so far and a
 //! checkpoint written).
 
+mod bench_rays_cmd;
 mod builtin;
 mod checkpoint;
 mod convert_cmd;
@@ -47,6 +48,9 @@ enum Command {
     /// Estimate pi from random points and show the variance falling as 1/N (the lecture's
     /// coconut).
     Pi(pi_cmd::PiArgs),
+    /// Trace a fixed list of rays against a PLY mesh: BVH build time and rays per second
+    /// (the interface `bench/rays.sh` also feeds to Embree).
+    BenchRays(bench_rays_cmd::BenchRaysArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +63,7 @@ fn main() -> ExitCode {
         Some(Command::Diff(args)) => diff_cmd::run(&args),
         Some(Command::Convert(args)) => convert_cmd::run(&args),
         Some(Command::Pi(args)) => pi_cmd::run(&args),
+        Some(Command::BenchRays(args)) => bench_rays_cmd::run(&args),
         None => render_cmd::run(&render_cmd::RenderArgs::builtin_default()),
     };
     match result {

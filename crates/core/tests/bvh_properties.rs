@@ -1,9 +1,11 @@
-//! Property tests for the BVH: on random triangle soups and random rays, closest-hit and
-//! any-hit queries agree with brute force, and the tree's invariants hold.
+//! Property tests for the BVHs (binary and 4-wide): on random triangle soups and random rays,
+//! closest-hit and any-hit queries agree with brute force, and the trees' invariants hold;
+//! also for soups with zero-area triangles, rays lying in the planes of boxes (axis-aligned
+//! triangles met edge-on) and NaN directions.
 
 use std::sync::Arc;
 
-use mcrender_core::accel::Bvh;
+use mcrender_core::accel::{Bvh, WideBvh};
 use mcrender_core::math::{Bounds3, Ray, Vec3};
 use mcrender_core::shape::{Shape, Triangle, TriangleMesh};
 use proptest::prelude::*;
@@ -46,6 +48,8 @@ proptest! {
         let bounds: Vec<Bounds3> = shapes.iter().map(Shape::bounds).collect();
         let bvh = Bvh::build(&bounds);
         prop_assert_eq!(bvh.check_invariants(&bounds), Ok(()));
+        let wide = WideBvh::build(&bounds);
+        prop_assert_eq!(wide.check_invariants(&bounds), Ok(()));
         for (o, d, target, aimed) in rays {
             // Half the rays aim at a triangle's centroid, so they certainly hit something.
             let tri = &tris[target.index(tris.len())];
@@ -57,6 +61,8 @@ proptest! {
                 .filter_map(|(i, s)| s.intersect(&ray, f32::INFINITY).map(|h| (i, h.t)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             let fast = bvh.closest_hit(&ray, f32::INFINITY, |i, r, t| shapes[i as usize].intersect(r, t).map(|h| (h.t, ())));
+            let fast_wide = wide.closest_hit(&ray, f32::INFINITY, |i, r, t| shapes[i as usize].intersect(r, t).map(|h| (h.t, h.t)));
+            prop_assert_eq!(brute.map(|b| b.1), fast_wide.map(|w| w.1), "wide closest distance differs");
             let area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
             let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
             // A ray grazing the triangle's plane may miss it within rounding error.
@@ -76,6 +82,107 @@ proptest! {
                 let any_brute = shapes.iter().any(|s| s.intersect(&ray, t_max).is_some());
                 let any_fast = bvh.any_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).is_some());
                 prop_assert_eq!(any_brute, any_fast);
+                let any_wide = wide.any_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).is_some());
+                prop_assert_eq!(any_brute, any_wide);
+            }
+        }
+    }
+}
+
+/// A soup of axis-aligned triangles (each flat in x, y or z, so its box is flat), some of
+/// zero area.
+fn flat_soup() -> impl Strategy<Value = Vec<[Vec3; 3]>> {
+    prop::collection::vec((vec3(6.0), vec3(1.5), vec3(1.5), 0..3usize, 0..8u8), 1..200).prop_map(|v| {
+        v.into_iter()
+            .map(|(c, a, b, axis, kind)| {
+                let mut t = [c, c + a, c + b];
+                for p in &mut t {
+                    p[axis] = c[axis].round();
+                }
+                if kind == 0 {
+                    t[2] = t[1]; // zero area: two equal corners
+                } else if kind == 1 {
+                    t[2] = t[0] + 2.0 * (t[1] - t[0]); // zero area: collinear
+                } else if kind < 5 {
+                    t[2][axis] += 1.0; // standing on the plane, its bottom edge in it
+                }
+                t
+            })
+            .collect()
+    })
+}
+
+/// Brute-force closest distance and any-hit answer.
+fn brute(shapes: &[Shape], ray: &Ray, t_max: f32) -> (Option<f32>, bool) {
+    let t = shapes
+        .iter()
+        .filter_map(|s| s.intersect(ray, t_max).map(|h| h.t))
+        .min_by(f32::total_cmp);
+    (t, t.is_some())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7769_6465),
+        ..ProptestConfig::default()
+    })]
+
+    /// Rays whose origin lies on the integer planes the flat triangles sit in, travelling
+    /// inside such a plane (one direction component zero), plus NaN directions: both trees
+    /// agree with brute force (NaN directions hit nothing).
+    #[test]
+    fn wide_bvh_handles_flat_boxes_degenerate_triangles_and_nan(
+        tris in flat_soup(),
+        rays in prop::collection::vec(
+            (vec3(8.0), vec3(1.0), 0..3usize, 0..7u8, 0.1f32..20.0, any::<prop::sample::Index>()), 80),
+    ) {
+        let shapes = shapes_of(&tris);
+        let bounds: Vec<Bounds3> = shapes.iter().map(Shape::bounds).collect();
+        let bvh = Bvh::build(&bounds);
+        let wide = WideBvh::build(&bounds);
+        prop_assert_eq!(wide.check_invariants(&bounds), Ok(()));
+        for (mut o, mut d, axis, kind, t_max, target) in rays {
+            match kind {
+                5 | 6 => {
+                    // In the plane of a triangle's bottom edge, aimed at the edge's midpoint
+                    // (the edge lies in the triangle's flat bounding-box face).
+                    let tri = tris[target.index(tris.len())];
+                    let Some(k) = (0..3).find(|&k| tri[0][k] == tri[1][k] && tri[2][k] != tri[0][k]) else {
+                        continue;
+                    };
+                    o[k] = tri[0][k];
+                    d = 0.5 * (tri[0] + tri[1]) - o;
+                    d[k] = 0.0;
+                }
+                0..=2 => {
+                    // In a plane: origin on an integer coordinate, no motion along that axis.
+                    o[axis] = o[axis].round();
+                    d[axis] = 0.0;
+                }
+                3 => d[axis] = f32::NAN,
+                _ => {}
+            }
+            if d.x == 0.0 && d.y == 0.0 && d.z == 0.0 {
+                continue;
+            }
+            let ray = Ray::new(o, d);
+            let t_max = if kind == 4 { t_max } else { f32::INFINITY };
+            let (t_brute, any_brute) = brute(&shapes, &ray, t_max);
+            if kind == 3 {
+                prop_assert!(t_brute.is_none(), "a NaN direction hit a triangle at {:?}", t_brute);
+            }
+            let t_wide = wide
+                .closest_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).map(|h| (h.t, h.t)))
+                .map(|w| w.1);
+            prop_assert_eq!(t_brute, t_wide, "wide closest hit, ray {:?}", ray);
+            let any_wide = wide.any_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).is_some());
+            prop_assert_eq!(any_brute, any_wide, "wide any hit, ray {:?}", ray);
+            if kind != 3 {
+                let t_bin = bvh
+                    .closest_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).map(|h| (h.t, h.t)))
+                    .map(|w| w.1);
+                prop_assert_eq!(t_brute, t_bin, "binary closest hit, ray {:?}", ray);
             }
         }
     }

@@ -23,9 +23,18 @@ pub fn mix_bits(mut v: u64) -> u64 {
 pub fn hash_u64s(values: &[u64]) -> u64 {
     let mut h = mix_bits(values.len() as u64);
     for &v in values {
-        h = mix_bits(h.wrapping_add(GOLDEN_GAMMA).wrapping_add(v));
+        h = hash_absorb(h, v);
     }
     h
+}
+
+/// One step of [`hash_u64s`]: the state `h` absorbs `v`. With it a caller can hash many
+/// tuples sharing a prefix at the cost of one step each: `hash_u64s(&[a, b])` is
+/// `hash_absorb(hash_absorb(mix_bits(2), a), b)`.
+#[inline]
+#[must_use]
+pub fn hash_absorb(h: u64, v: u64) -> u64 {
+    mix_bits(h.wrapping_add(GOLDEN_GAMMA).wrapping_add(v))
 }
 
 /// A uniform value in `[0, 1)` hashed from the bit patterns of `values` (pbrt-v4
@@ -74,6 +83,7 @@ mod tests {
             }
         }
         assert_ne!(hash_u64s(&[1, 2]), hash_u64s(&[2, 1]));
+        assert_eq!(hash_u64s(&[5, 9]), hash_absorb(hash_absorb(mix_bits(2), 5), 9));
         assert_ne!(hash_u64s(&[0]), hash_u64s(&[0, 0]));
         assert_ne!(hash_u64s(&[]), hash_u64s(&[0]));
     }

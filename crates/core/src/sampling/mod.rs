@@ -14,7 +14,7 @@ mod warp;
 
 pub use distribution::PiecewiseConstant1D;
 pub use distribution_2d::PiecewiseConstant2D;
-pub use hash::{hash_float, hash_u64s, mix_bits};
+pub use hash::{hash_absorb, hash_float, hash_u64s, mix_bits};
 pub use mis::{balance_heuristic, power_heuristic};
 pub use rng::Pcg32;
 pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, StratifiedSampler};

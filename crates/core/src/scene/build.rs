@@ -9,7 +9,7 @@ use super::{
     EnvMapping, FloatTexture, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, RgbTexture,
     Scene, SceneDescription, ShapeDesc,
 };
-use crate::accel::Bvh;
+use crate::accel::WideBvh;
 use crate::camera::{Camera, PerspectiveCamera};
 use crate::film::Filter;
 use crate::light::{
@@ -735,7 +735,7 @@ impl Scene {
                 ),
             ));
         }
-        let bvh = Bvh::build(&bounds);
+        let bvh = WideBvh::build(&bounds);
         // Distant and infinite lights need the scene's size before their power is known.
         let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));
         lights.iter_mut().for_each(|l| l.preprocess(&scene_bounds));

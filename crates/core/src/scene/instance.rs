@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use super::Primitive;
-use crate::accel::Bvh;
+use crate::accel::WideBvh;
 use crate::math::{gamma, Bounds3, Ray, Transform, Vec3};
 use crate::shape::{ShapeHit, SurfaceInteraction};
 
@@ -16,7 +16,7 @@ use crate::shape::{ShapeHit, SurfaceInteraction};
 pub struct ObjectGeometry {
     /// Primitives, referred to by the BVH. None emits.
     pub primitives: Vec<Primitive>,
-    bvh: Bvh,
+    bvh: WideBvh,
 }
 
 impl ObjectGeometry {
@@ -25,7 +25,7 @@ impl ObjectGeometry {
     pub fn new(primitives: Vec<Primitive>) -> Self {
         let bounds: Vec<Bounds3> = primitives.iter().map(|p| p.shape.bounds()).collect();
         Self {
-            bvh: Bvh::build(&bounds),
+            bvh: WideBvh::build(&bounds),
             primitives,
         }
     }

@@ -17,7 +17,7 @@ pub use build::{BuildError, MAX_PIXELS, MAX_RESOLUTION, MAX_SCENE_COORDINATE};
 pub use description::*;
 pub use instance::{Instance, ObjectGeometry};
 
-use crate::accel::Bvh;
+use crate::accel::WideBvh;
 use crate::bsdf::Bsdf;
 use crate::camera::Camera;
 use crate::film::Filter;
@@ -77,7 +77,7 @@ pub struct Scene {
     pub instances: Vec<Instance>,
     /// True when some material is an `interface`, which shadow rays must skip.
     has_interfaces: bool,
-    bvh: Bvh,
+    bvh: WideBvh,
 }
 
 impl Scene {

@@ -130,7 +130,8 @@ impl Triangle {
         let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
         let max_e = Vec3::new(e0, e1, e2).abs().max_element();
         let delta_t = 3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-        if t <= delta_t {
+        // (A NaN distance, from a NaN direction, is no hit either.)
+        if t.is_nan() || t <= delta_t {
             return None;
         }
         Some(ShapeHit { t, data: [b0, b1, b2] })

@@ -15,7 +15,7 @@
 //! the other dimensions.
 
 use crate::math::{UVec2, Vec2};
-use crate::sampling::{hash_u64s, nested_uniform_scramble};
+use crate::sampling::{hash_absorb, hash_u64s, mix_bits, nested_uniform_scramble};
 
 /// Number of dimensions with Sobol' generator matrices.
 pub const SOBOL_DIMENSIONS: usize = 64;
@@ -158,6 +158,9 @@ pub struct OwenSobolSampler {
     seed: u64,
     /// Hash of (pixel, seed): seeds the index shuffle and every dimension's scrambling.
     pixel_hash: u64,
+    /// The state of `hash_u64s(&[pixel_hash, dim])` after absorbing `pixel_hash`, so each
+    /// dimension's hash costs one mixing step (the same values, computed once per sample).
+    dim_hash_state: u64,
     sample_index: u32,
     /// The pixel's sample index after the shuffle: the Sobol' point used.
     sobol_index: u32,
@@ -173,6 +176,7 @@ impl OwenSobolSampler {
             samples_per_pixel,
             seed,
             pixel_hash: 0,
+            dim_hash_state: 0,
             sample_index: 0,
             sobol_index: 0,
             dimension: 0,
@@ -190,6 +194,7 @@ impl OwenSobolSampler {
     #[inline]
     pub fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
         self.pixel_hash = hash_u64s(&[u64::from(pixel.x), u64::from(pixel.y), self.seed]);
+        self.dim_hash_state = hash_absorb(mix_bits(2), self.pixel_hash);
         self.sample_index = sample_index;
         self.sobol_index = nested_uniform_scramble(sample_index, self.pixel_hash as u32);
         self.dimension = 0;
@@ -198,7 +203,8 @@ impl OwenSobolSampler {
     /// Dimension `dim` of the current sample.
     #[inline]
     fn sample(&self, dim: u32) -> f32 {
-        let dim_hash = hash_u64s(&[self.pixel_hash, u64::from(dim)]);
+        let dim_hash = hash_absorb(self.dim_hash_state, u64::from(dim));
+        debug_assert_eq!(dim_hash, hash_u64s(&[self.pixel_hash, u64::from(dim)]));
         let x = if (dim as usize) < SOBOL_DIMENSIONS {
             sobol_u32(self.sobol_index, dim as usize)
         } else {
