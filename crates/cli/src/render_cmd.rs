@@ -7,7 +7,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use mcrender_core::render::{render, RenderOptions, RenderOutput};
+use mcrender_core::render::{ProgressFn, RenderOptions, RenderOutput, RenderSession};
 use mcrender_core::scene::Scene;
 use mcrender_scene::image_io::{write_image, ImageRgb};
 
@@ -64,12 +64,17 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
-    let bar = progress_bar(u64::from(w) * u64::from(h), args.quiet);
+    let bar = progress_bar(u64::from(w) * u64::from(h) * u64::from(spp), args.quiet);
     let opts = RenderOptions {
         threads: args.scene.threads,
         ..Default::default()
     };
-    let out = render(&scene, &opts, &|done, _| bar.set_position(done))?;
+    let mut session = RenderSession::new(&scene, &opts)?;
+    let stats = session.advance(0..spp, &ProgressFn(|done, _| bar.set_position(done)))?;
+    let out = RenderOutput {
+        film: session.into_film(),
+        stats,
+    };
     bar.finish_and_clear();
 
     write_outputs(&out, &output, args.variance_output.as_deref())?;

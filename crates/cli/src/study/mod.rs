@@ -12,7 +12,7 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use mcrender_core::color::Rgb;
 use mcrender_core::film::Film;
-use mcrender_core::render::{render_samples, RenderOptions};
+use mcrender_core::render::{RenderOptions, RenderSession};
 use mcrender_core::scene::{Scene, SceneDescription};
 use mcrender_scene::image_io::{read_exr, write_image, ImageRgb};
 
@@ -30,7 +30,8 @@ pub struct Progression {
 }
 
 /// Render `desc` up to its sample count in waves 1, 2, 4, ... (the last wave tops up to
-/// the sample count), calling `measure` on the film after each.
+/// the sample count) of one render session, calling `measure` on the film after each. The
+/// final film is bit-identical to a render in one pass.
 pub fn render_in_waves(
     desc: &SceneDescription,
     threads: Option<usize>,
@@ -42,20 +43,14 @@ pub fn render_in_waves(
         threads,
         ..Default::default()
     };
-    let mut film = Film::new(desc.film.width, desc.film.height);
-    let (mut time, mut rays, mut points) = (Duration::ZERO, 0, Vec::new());
-    let mut done = 0;
-    while done < spp {
-        let next = (done * 2).clamp(1, spp);
-        let out = render_samples(&scene, &opts, done..next, &|_, _| {})?;
-        film.merge(&out.film);
-        time += out.stats.elapsed;
-        rays += out.stats.trace.rays + out.stats.trace.shadow_rays;
-        done = next;
-        points.push((done, measure(&film)));
-    }
+    let mut session = RenderSession::new(&scene, &opts)?;
+    let mut points = Vec::new();
+    let stats = session.render_in_waves(0..spp, &(), |film, _| {
+        points.push((film.samples_per_pixel() as u32, measure(film)));
+    })?;
+    let (time, rays) = (stats.elapsed, stats.trace.rays + stats.trace.shadow_rays);
     Ok(Progression {
-        film,
+        film: session.into_film(),
         time,
         rays,
         points,

@@ -14,6 +14,7 @@ pub use path::PathIntegrator;
 pub use roulette::roulette;
 
 use crate::color::Rgb;
+use crate::film::Splat;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::{DirectStrategy, IntegratorKind, Scene};
@@ -83,10 +84,31 @@ impl Integrator {
         }))
     }
 
-    /// Radiance arriving at the camera along `ray`.
-    pub fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler, stats: &mut TraceStats) -> Rgb {
+    /// Radiance arriving at the camera along `ray`. Contributions to other pixels (light
+    /// tracing) are pushed onto `splats` in the order they are made; the path tracer never
+    /// pushes.
+    pub fn li(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut Sampler,
+        stats: &mut TraceStats,
+        splats: &mut Vec<Splat>,
+    ) -> Rgb {
         match self {
-            Self::Path(p) => p.li(scene, ray, sampler, stats),
+            Self::Path(p) => {
+                let _ = splats;
+                p.li(scene, ray, sampler, stats)
+            }
+        }
+    }
+
+    /// Whether [`Self::li`] may push splats (the render session then renders one sample
+    /// index at a time, so that splats are added in a fixed order with bounded memory).
+    #[must_use]
+    pub fn splats(&self) -> bool {
+        match self {
+            Self::Path(_) => false,
         }
     }
 }
