@@ -3,6 +3,7 @@
 //! Exit codes: 0 success, 2 bad input (unreadable or malformed scene, absurd parameters,
 //! unwritable output), with a message on stderr naming what is wrong.
 
+mod bdpt_visualize;
 mod builtin;
 mod convert_cmd;
 mod diff_cmd;

@@ -79,6 +79,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     write_outputs(&out, &output, args.variance_output.as_deref())?;
     print_summary(&out, w, h, spp, &output);
+    let dir = output.parent().unwrap_or(Path::new("."));
+    crate::bdpt_visualize::write_if_requested(&desc, &opts, dir, args.quiet)?;
     Ok(())
 }
 

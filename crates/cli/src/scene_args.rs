@@ -17,6 +17,8 @@ pub enum IntegratorChoice {
     Path,
     /// Emission and direct lighting at the first hit only.
     Direct,
+    /// Bidirectional path tracing.
+    Bdpt,
 }
 
 /// Russian roulette presets.
@@ -157,6 +159,7 @@ impl SceneArgs {
             desc.integrator.kind = match i {
                 IntegratorChoice::Path => IntegratorKind::Path,
                 IntegratorChoice::Direct => IntegratorKind::Direct,
+                IntegratorChoice::Bdpt => IntegratorKind::Bdpt,
             };
         }
         if let Some(d) = self.direct {

@@ -58,6 +58,16 @@ impl TrowbridgeReitz {
         Self { alpha_x, alpha_y }
     }
 
+    /// Roughen a near-smooth distribution (pbrt-v4 `TrowbridgeReitzDistribution::
+    /// Regularize`): each alpha below 0.3 is doubled and clamped to [0.1, 0.3].
+    pub fn regularize(&mut self) {
+        for a in [&mut self.alpha_x, &mut self.alpha_y] {
+            if *a < 0.3 {
+                *a = (2.0 * *a).clamp(0.1, 0.3);
+            }
+        }
+    }
+
     /// True when the surface is smooth enough to be treated as a perfect mirror or
     /// refractor (either alpha below [`SMOOTH_ALPHA`]).
     #[must_use]

@@ -5,10 +5,12 @@
 //! by multiple importance sampling. Each is unbiased for every scene it accepts; the
 //! strategies that can only find light by hitting it refuse scenes with point-like lights.
 
+pub mod bdpt;
 mod direct;
 mod path;
 mod roulette;
 
+pub use bdpt::BdptIntegrator;
 pub use direct::DirectEstimator;
 pub use path::PathIntegrator;
 pub use roulette::roulette;
@@ -56,6 +58,8 @@ pub enum IntegratorError {
 pub enum Integrator {
     /// Unidirectional path tracing (direct lighting only is a path of depth one).
     Path(PathIntegrator),
+    /// Bidirectional path tracing.
+    Bdpt(BdptIntegrator),
 }
 
 impl Integrator {
@@ -63,6 +67,9 @@ impl Integrator {
     /// scene without bias.
     pub fn new(scene: &Scene) -> Result<Self, IntegratorError> {
         let s = &scene.integrator;
+        if s.kind == IntegratorKind::Bdpt {
+            return Ok(Self::Bdpt(BdptIntegrator::new(scene, &s.bdpt, s.max_depth)));
+        }
         let delta_lights = scene.lights.iter().filter(|l| l.is_delta()).count();
         if s.direct.needs_emitter_hits() && delta_lights > 0 {
             return Err(IntegratorError::InvisibleLights {
@@ -73,6 +80,7 @@ impl Integrator {
         let max_depth = match s.kind {
             IntegratorKind::Path => s.max_depth,
             IntegratorKind::Direct => s.max_depth.min(1),
+            IntegratorKind::Bdpt => unreachable!("handled above"),
         };
         Ok(Self::Path(PathIntegrator {
             max_depth,
@@ -100,6 +108,7 @@ impl Integrator {
                 let _ = splats;
                 p.li(scene, ray, sampler, stats)
             }
+            Self::Bdpt(b) => b.li(scene, ray, sampler, stats, splats),
         }
     }
 
@@ -109,6 +118,7 @@ impl Integrator {
     pub fn splats(&self) -> bool {
         match self {
             Self::Path(_) => false,
+            Self::Bdpt(_) => true,
         }
     }
 }

@@ -184,6 +184,38 @@ pub enum IntegratorKind {
     Path,
     /// Emission plus direct lighting at the first hit only (`Integrator "direct"`).
     Direct,
+    /// Bidirectional path tracing (`Integrator "bdpt"`).
+    Bdpt,
+}
+
+/// Settings of bidirectional path tracing (pbrt `Integrator "bdpt"`, plus a strategy
+/// filter for studying the strategies one at a time).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BdptDesc {
+    /// Roughen near-specular surfaces after the first non-specular bounce (pbrt-v4's
+    /// `regularize`): biased, but makes caustic paths connectible.
+    pub regularize: bool,
+    /// Write one image per strategy `(s, t)`, unweighted (pbrt's `visualizestrategies`).
+    pub visualize_strategies: bool,
+    /// Write one image per strategy `(s, t)`, MIS-weighted (pbrt's `visualizeweights`).
+    pub visualize_weights: bool,
+    /// Weight the strategies by multiple importance sampling (off: each counts in full,
+    /// so only one strategy at a time gives a meaningful image).
+    pub mis: bool,
+    /// Keep only the contribution of the strategy `(s, t)`.
+    pub strategy: Option<(u32, u32)>,
+}
+
+impl Default for BdptDesc {
+    fn default() -> Self {
+        Self {
+            regularize: false,
+            visualize_strategies: false,
+            visualize_weights: false,
+            mis: true,
+            strategy: None,
+        }
+    }
 }
 
 /// How the direct lighting at each path vertex is estimated.
@@ -265,6 +297,8 @@ pub struct IntegratorDesc {
     pub light_samples: u32,
     /// Russian roulette.
     pub russian_roulette: RussianRoulette,
+    /// Bidirectional path tracing settings (used by [`IntegratorKind::Bdpt`]).
+    pub bdpt: BdptDesc,
 }
 
 impl Default for IntegratorDesc {
@@ -275,6 +309,7 @@ impl Default for IntegratorDesc {
             direct: DirectStrategy::Mis,
             light_samples: 1,
             russian_roulette: RussianRoulette::Throughput,
+            bdpt: BdptDesc::default(),
         }
     }
 }
