@@ -19,6 +19,10 @@ pub enum IntegratorChoice {
     Direct,
     /// Bidirectional path tracing.
     Bdpt,
+    /// Light tracing: paths from the lights, connected to the camera.
+    Lightpath,
+    /// Stochastic progressive photon mapping (the scene's or pbrt's SPPM parameters).
+    Sppm,
 }
 
 /// Russian roulette presets.
@@ -160,6 +164,8 @@ impl SceneArgs {
                 IntegratorChoice::Path => IntegratorKind::Path,
                 IntegratorChoice::Direct => IntegratorKind::Direct,
                 IntegratorChoice::Bdpt => IntegratorKind::Bdpt,
+                IntegratorChoice::Lightpath => IntegratorKind::LightPath,
+                IntegratorChoice::Sppm => IntegratorKind::Sppm,
             };
         }
         if let Some(d) = self.direct {

@@ -4,14 +4,21 @@
 //! hemisphere sampling (uniform or cosine), light sampling, BSDF sampling, or both combined
 //! by multiple importance sampling. Each is unbiased for every scene it accepts; the
 //! strategies that can only find light by hitting it refuse scenes with point-like lights.
+//!
+//! Light tracing ([`LightPathIntegrator`]) traces paths from the lights and splats their
+//! camera connections. Stochastic progressive photon mapping ([`sppm`]) does not work per
+//! camera sample and has its own driver, [`sppm::render`].
 
 pub mod bdpt;
 mod direct;
+mod lightpath;
 mod path;
 mod roulette;
+pub mod sppm;
 
 pub use bdpt::BdptIntegrator;
 pub use direct::DirectEstimator;
+pub use lightpath::LightPathIntegrator;
 pub use path::PathIntegrator;
 pub use roulette::roulette;
 
@@ -51,6 +58,12 @@ pub enum IntegratorError {
         /// Number of such lights.
         count: usize,
     },
+    /// The integrator does not render per camera sample; its module has its own driver.
+    #[error("integrator \"{name}\" is rendered by its own driver (integrator::{name}::render), not per camera sample")]
+    OwnDriver {
+        /// The integrator's name.
+        name: &'static str,
+    },
 }
 
 /// The closed set of integrators.
@@ -60,6 +73,8 @@ pub enum Integrator {
     Path(PathIntegrator),
     /// Bidirectional path tracing.
     Bdpt(BdptIntegrator),
+    /// Light tracing: every sample is a light path whose camera connections are splats.
+    LightPath(LightPathIntegrator),
 }
 
 impl Integrator {
@@ -67,8 +82,16 @@ impl Integrator {
     /// scene without bias.
     pub fn new(scene: &Scene) -> Result<Self, IntegratorError> {
         let s = &scene.integrator;
-        if s.kind == IntegratorKind::Bdpt {
-            return Ok(Self::Bdpt(BdptIntegrator::new(scene, &s.bdpt, s.max_depth)));
+        match s.kind {
+            IntegratorKind::Bdpt => return Ok(Self::Bdpt(BdptIntegrator::new(scene, &s.bdpt, s.max_depth))),
+            IntegratorKind::LightPath => {
+                return Ok(Self::LightPath(LightPathIntegrator {
+                    max_depth: s.max_depth,
+                    russian_roulette: s.russian_roulette,
+                }))
+            }
+            IntegratorKind::Sppm => return Err(IntegratorError::OwnDriver { name: "sppm" }),
+            IntegratorKind::Path | IntegratorKind::Direct => {}
         }
         let delta_lights = scene.lights.iter().filter(|l| l.is_delta()).count();
         if s.direct.needs_emitter_hits() && delta_lights > 0 {
@@ -80,7 +103,7 @@ impl Integrator {
         let max_depth = match s.kind {
             IntegratorKind::Path => s.max_depth,
             IntegratorKind::Direct => s.max_depth.min(1),
-            IntegratorKind::Bdpt => unreachable!("handled above"),
+            IntegratorKind::Bdpt | IntegratorKind::LightPath | IntegratorKind::Sppm => unreachable!("handled above"),
         };
         Ok(Self::Path(PathIntegrator {
             max_depth,
@@ -109,6 +132,12 @@ impl Integrator {
                 p.li(scene, ray, sampler, stats)
             }
             Self::Bdpt(b) => b.li(scene, ray, sampler, stats, splats),
+            Self::LightPath(lp) => {
+                // The camera ray is not used: everything arrives as splats.
+                let _ = ray;
+                lp.trace(scene, sampler, stats, &mut |p_film, l| splats.push(Splat { p_film, l }));
+                Rgb::BLACK
+            }
         }
     }
 
@@ -119,6 +148,7 @@ impl Integrator {
         match self {
             Self::Path(_) => false,
             Self::Bdpt(_) => true,
+            Self::LightPath(_) => true,
         }
     }
 }

@@ -186,6 +186,12 @@ pub enum IntegratorKind {
     Direct,
     /// Bidirectional path tracing (`Integrator "bdpt"`).
     Bdpt,
+    /// Light tracing: paths from the lights connected to the camera (`Integrator
+    /// "lightpath"`).
+    LightPath,
+    /// Stochastic progressive photon mapping (`Integrator "sppm"`), rendered by its own
+    /// driver (`integrator::sppm::render`).
+    Sppm,
 }
 
 /// Settings of bidirectional path tracing (pbrt `Integrator "bdpt"`, plus a strategy
@@ -214,6 +220,30 @@ impl Default for BdptDesc {
             visualize_weights: false,
             mis: true,
             strategy: None,
+        }
+    }
+}
+
+/// Parameters of `Integrator "sppm"` (pbrt-v4's names and defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SppmDesc {
+    /// Camera and photon passes (`numiterations`, default 64).
+    pub iterations: u32,
+    /// Photons per pass (`photonsperiteration`); `None` (pbrt's -1) = the pixel count.
+    pub photons_per_iteration: Option<u64>,
+    /// Initial search radius (`radius`, default 1).
+    pub radius: f32,
+    /// Seed (`seed`); `None` = the sampler's seed.
+    pub seed: Option<u64>,
+}
+
+impl Default for SppmDesc {
+    fn default() -> Self {
+        Self {
+            iterations: 64,
+            photons_per_iteration: None,
+            radius: 1.0,
+            seed: None,
         }
     }
 }
@@ -299,6 +329,8 @@ pub struct IntegratorDesc {
     pub russian_roulette: RussianRoulette,
     /// Bidirectional path tracing settings (used by [`IntegratorKind::Bdpt`]).
     pub bdpt: BdptDesc,
+    /// SPPM parameters (used by [`IntegratorKind::Sppm`]).
+    pub sppm: SppmDesc,
 }
 
 impl Default for IntegratorDesc {
@@ -310,6 +342,7 @@ impl Default for IntegratorDesc {
             light_samples: 1,
             russian_roulette: RussianRoulette::Throughput,
             bdpt: BdptDesc::default(),
+            sppm: SppmDesc::default(),
         }
     }
 }
