@@ -228,8 +228,7 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "bdpt" or "lightpath" (a scene file may also say
-    /// "sppm", which renders only through the command line).
+    /// The integrator: "path", "direct", "bdpt", "lightpath" (or "sppm", read only).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -250,7 +249,7 @@ impl PyScene {
             "lightpath" => IntegratorKind::LightPath,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\", found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
                 )))
             }
         };
