@@ -5,6 +5,7 @@
 //! what is wrong; 130 / 143 a render stopped by SIGINT / SIGTERM (image so far and a
 //! checkpoint written).
 
+mod bdpt_visualize;
 mod bench_rays_cmd;
 mod builtin;
 mod checkpoint;

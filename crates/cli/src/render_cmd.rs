@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::integrator::sppm::{self, SppmSettings};
-use mcrender_core::render::{RenderOutput, RenderStats};
+use mcrender_core::render::{RenderOptions, RenderOutput, RenderStats};
 use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_scene::image_io::{write_images, ImageRgb};
 
@@ -94,6 +94,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     write_outputs(&out, &output, args.variance_output.as_deref())?;
     print_summary(&out, w, h, spp, &output);
+    let dir = output.parent().unwrap_or(Path::new("."));
+    let opts = RenderOptions {
+        threads: args.scene.threads,
+        ..Default::default()
+    };
+    crate::bdpt_visualize::write_if_requested(&desc, &opts, dir, args.quiet)?;
     Ok(())
 }
 

@@ -20,6 +20,8 @@ pub enum IntegratorChoice {
     Path,
     /// Emission and direct lighting at the first hit only.
     Direct,
+    /// Bidirectional path tracing.
+    Bdpt,
     /// Light tracing: paths from the lights, connected to the camera.
     Lightpath,
     /// Stochastic progressive photon mapping (the scene's or pbrt's SPPM parameters).
@@ -185,6 +187,7 @@ impl SceneArgs {
             desc.integrator.kind = match i {
                 IntegratorChoice::Path => IntegratorKind::Path,
                 IntegratorChoice::Direct => IntegratorKind::Direct,
+                IntegratorChoice::Bdpt => IntegratorKind::Bdpt,
                 IntegratorChoice::Lightpath => IntegratorKind::LightPath,
                 IntegratorChoice::Sppm => IntegratorKind::Sppm,
             };

@@ -228,12 +228,13 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "lightpath" (or "sppm", read only).
+    /// The integrator: "path", "direct", "bdpt", "lightpath" (or "sppm", read only).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
             IntegratorKind::Path => "path",
             IntegratorKind::Direct => "direct",
+            IntegratorKind::Bdpt => "bdpt",
             IntegratorKind::LightPath => "lightpath",
             IntegratorKind::Sppm => "sppm",
         }
@@ -244,10 +245,11 @@ impl PyScene {
         self.desc.integrator.kind = match value {
             "path" => IntegratorKind::Path,
             "direct" => IntegratorKind::Direct,
+            "bdpt" => IntegratorKind::Bdpt,
             "lightpath" => IntegratorKind::LightPath,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
                 )))
             }
         };

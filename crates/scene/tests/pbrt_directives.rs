@@ -608,3 +608,21 @@ fn recursive_include_is_an_error() {
     let err = mcrender_scene::pbrt::load_file(&dir.path().join("a.pbrt")).unwrap_err();
     assert!(err.to_string().contains("nested too deeply"), "{err}");
 }
+
+#[test]
+fn bdpt_is_read_with_its_parameters_and_no_fallback_warning() {
+    let s = load(
+        "Integrator \"bdpt\" \"integer maxdepth\" 7 \"bool regularize\" true \"bool visualizeweights\" true\n\
+         WorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]",
+    );
+    let i = &s.description.integrator;
+    assert_eq!(i.kind, mcrender_core::scene::IntegratorKind::Bdpt);
+    assert_eq!(i.max_depth, 7);
+    assert!(i.bdpt.regularize && i.bdpt.visualize_weights && !i.bdpt.visualize_strategies);
+    assert!(i.bdpt.mis && i.bdpt.strategy.is_none());
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // Another integrator's parameters are not bdpt's.
+    let s = load("Integrator \"path\" \"bool regularize\" true\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]");
+    assert!(!s.description.integrator.bdpt.regularize);
+    assert!(s.warnings.iter().any(|w| w.contains("regularize")), "{:?}", s.warnings);
+}

@@ -58,6 +58,16 @@ impl TrowbridgeReitz {
         Self { alpha_x, alpha_y }
     }
 
+    /// Roughen a near-smooth distribution (pbrt-v4 `TrowbridgeReitzDistribution::
+    /// Regularize`): each alpha below 0.3 is doubled and clamped to [0.1, 0.3].
+    pub fn regularize(&mut self) {
+        for a in [&mut self.alpha_x, &mut self.alpha_y] {
+            if *a < 0.3 {
+                *a = (2.0 * *a).clamp(0.1, 0.3);
+            }
+        }
+    }
+
     /// True when the surface is smooth enough to be treated as a perfect mirror or
     /// refractor (either alpha below [`SMOOTH_ALPHA`]).
     #[must_use]
@@ -236,6 +246,14 @@ mod tests {
         assert!(m.g(Vec3::Z, grazing) <= m.g1(grazing) + 1e-6);
         assert!(TrowbridgeReitz::new(5e-4, 0.3).effectively_smooth());
         assert!(!TrowbridgeReitz::new(0.01, 0.01).effectively_smooth());
+        // Regularizing roughens near-smooth surfaces into [0.1, 0.3] and leaves rough ones.
+        let mut d = TrowbridgeReitz::new(0.0, 0.2);
+        d.regularize();
+        assert_eq!((d.alpha_x, d.alpha_y), (0.1, 0.3));
+        assert!(!d.effectively_smooth());
+        let mut d = TrowbridgeReitz::new(0.5, 0.12);
+        d.regularize();
+        assert_eq!((d.alpha_x, d.alpha_y), (0.5, 0.24));
         assert_eq!(roughness_to_alpha(0.25), 0.5);
     }
 }

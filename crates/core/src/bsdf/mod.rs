@@ -160,6 +160,23 @@ impl Bsdf {
         self.bxdf.flags()
     }
 
+    /// Roughen the microfacet distributions of conductors, dielectrics and coats (pbrt-v4
+    /// `BSDF::Regularize`), turning near-specular lobes into glossy ones that connections
+    /// can reach; a biased but consistent-looking trade used by bidirectional methods.
+    /// Other lobes are unchanged.
+    pub fn regularize(&mut self) {
+        match &mut self.bxdf {
+            Bxdf::Conductor(c) => c.distrib.regularize(),
+            Bxdf::Dielectric(d) => d.distrib.regularize(),
+            Bxdf::CoatedDiffuse(l) => l.top.distrib.regularize(),
+            Bxdf::CoatedConductor(l) => {
+                l.top.distrib.regularize();
+                l.bottom.distrib.regularize();
+            }
+            Bxdf::Diffuse(_) | Bxdf::ThinDielectric(_) | Bxdf::DiffuseTransmission(_) => {}
+        }
+    }
+
     /// `f(wo, wi)` for world-space directions; zero when the geometric normal and the
     /// shading frame disagree on reflection versus transmission (the light-leak guard).
     #[must_use]
@@ -176,11 +193,39 @@ impl Bsdf {
     /// sampled (reflection or transmission), as [`Self::f`] would be zero there.
     #[must_use]
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample> {
+        self.sample_f_mode(wo, uc, u, TransportMode::Radiance)
+    }
+
+    /// `f(wo, wi)` for the quantity `mode` carries: radiance as [`Self::f`]; importance
+    /// (paths traced from the lights) without the `1 / eta'^2` scaling of refraction
+    /// (pbrt-v4 section 9.5.2). Only dielectric interfaces differ; the other lobes are
+    /// symmetric, and the layered lobes reflect only, so the scaling cancels on the way
+    /// into and out of the coat.
+    #[must_use]
+    pub fn f_mode(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        match (mode, &self.bxdf) {
+            (TransportMode::Importance, Bxdf::Dielectric(d)) => {
+                let (wo_l, wi_l) = (self.frame.to_local(wo), self.frame.to_local(wi));
+                if wo_l.z == 0.0 || !self.sides_agree(wo, wi, wo_l, wi_l) {
+                    return Rgb::BLACK;
+                }
+                d.f_mode(wo_l, wi_l, mode)
+            }
+            _ => self.f(wo, wi),
+        }
+    }
+
+    /// [`Self::sample_f`] for the quantity `mode` carries (see [`Self::f_mode`]).
+    #[must_use]
+    pub fn sample_f_mode(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
         let wo_l = self.frame.to_local(wo);
         if wo_l.z == 0.0 || self.bxdf.flags().is_empty() {
             return None;
         }
-        let bs = self.bxdf.sample_f(wo_l, uc, u)?;
+        let bs = match (mode, &self.bxdf) {
+            (TransportMode::Importance, Bxdf::Dielectric(d)) => d.sample_f_mode(wo_l, uc, u, mode, ReflTrans::All)?,
+            _ => self.bxdf.sample_f(wo_l, uc, u)?,
+        };
         if bs.f.is_black() || bs.pdf == 0.0 || bs.wi.z == 0.0 || !bs.pdf.is_finite() {
             return None;
         }

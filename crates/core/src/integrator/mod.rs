@@ -9,12 +9,14 @@
 //! camera connections. Stochastic progressive photon mapping ([`sppm`]) does not work per
 //! camera sample and has its own driver, [`sppm::render`].
 
+pub mod bdpt;
 mod direct;
 mod lightpath;
 mod path;
 mod roulette;
 pub mod sppm;
 
+pub use bdpt::BdptIntegrator;
 pub use direct::DirectEstimator;
 pub use lightpath::LightPathIntegrator;
 pub use path::PathIntegrator;
@@ -69,6 +71,8 @@ pub enum IntegratorError {
 pub enum Integrator {
     /// Unidirectional path tracing (direct lighting only is a path of depth one).
     Path(PathIntegrator),
+    /// Bidirectional path tracing.
+    Bdpt(BdptIntegrator),
     /// Light tracing: every sample is a light path whose camera connections are splats.
     LightPath(LightPathIntegrator),
 }
@@ -79,6 +83,7 @@ impl Integrator {
     pub fn new(scene: &Scene) -> Result<Self, IntegratorError> {
         let s = &scene.integrator;
         match s.kind {
+            IntegratorKind::Bdpt => return Ok(Self::Bdpt(BdptIntegrator::new(scene, &s.bdpt, s.max_depth))),
             IntegratorKind::LightPath => {
                 return Ok(Self::LightPath(LightPathIntegrator {
                     max_depth: s.max_depth,
@@ -98,7 +103,7 @@ impl Integrator {
         let max_depth = match s.kind {
             IntegratorKind::Path => s.max_depth,
             IntegratorKind::Direct => s.max_depth.min(1),
-            IntegratorKind::LightPath | IntegratorKind::Sppm => unreachable!("handled above"),
+            IntegratorKind::Bdpt | IntegratorKind::LightPath | IntegratorKind::Sppm => unreachable!("handled above"),
         };
         Ok(Self::Path(PathIntegrator {
             max_depth,
@@ -126,6 +131,7 @@ impl Integrator {
                 let _ = splats;
                 p.li(scene, ray, sampler, stats)
             }
+            Self::Bdpt(b) => b.li(scene, ray, sampler, stats, splats),
             Self::LightPath(lp) => {
                 // The camera ray is not used: everything arrives as splats.
                 let _ = ray;
@@ -141,6 +147,7 @@ impl Integrator {
     pub fn splats(&self) -> bool {
         match self {
             Self::Path(_) => false,
+            Self::Bdpt(_) => true,
             Self::LightPath(_) => true,
         }
     }

@@ -184,12 +184,44 @@ pub enum IntegratorKind {
     Path,
     /// Emission plus direct lighting at the first hit only (`Integrator "direct"`).
     Direct,
+    /// Bidirectional path tracing (`Integrator "bdpt"`).
+    Bdpt,
     /// Light tracing: paths from the lights connected to the camera (`Integrator
     /// "lightpath"`).
     LightPath,
     /// Stochastic progressive photon mapping (`Integrator "sppm"`), rendered by its own
     /// driver (`integrator::sppm::render`).
     Sppm,
+}
+
+/// Settings of bidirectional path tracing (pbrt `Integrator "bdpt"`, plus a strategy
+/// filter for studying the strategies one at a time).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BdptDesc {
+    /// Roughen near-specular surfaces after the first non-specular bounce (pbrt-v4's
+    /// `regularize`): biased, but makes caustic paths connectible.
+    pub regularize: bool,
+    /// Write one image per strategy `(s, t)`, unweighted (pbrt's `visualizestrategies`).
+    pub visualize_strategies: bool,
+    /// Write one image per strategy `(s, t)`, MIS-weighted (pbrt's `visualizeweights`).
+    pub visualize_weights: bool,
+    /// Weight the strategies by multiple importance sampling (off: each counts in full,
+    /// so only one strategy at a time gives a meaningful image).
+    pub mis: bool,
+    /// Keep only the contribution of the strategy `(s, t)`.
+    pub strategy: Option<(u32, u32)>,
+}
+
+impl Default for BdptDesc {
+    fn default() -> Self {
+        Self {
+            regularize: false,
+            visualize_strategies: false,
+            visualize_weights: false,
+            mis: true,
+            strategy: None,
+        }
+    }
 }
 
 /// Parameters of `Integrator "sppm"` (pbrt-v4's names and defaults).
@@ -295,6 +327,8 @@ pub struct IntegratorDesc {
     pub light_samples: u32,
     /// Russian roulette.
     pub russian_roulette: RussianRoulette,
+    /// Bidirectional path tracing settings (used by [`IntegratorKind::Bdpt`]).
+    pub bdpt: BdptDesc,
     /// SPPM parameters (used by [`IntegratorKind::Sppm`]).
     pub sppm: SppmDesc,
 }
@@ -307,6 +341,7 @@ impl Default for IntegratorDesc {
             direct: DirectStrategy::Mis,
             light_samples: 1,
             russian_roulette: RussianRoulette::Throughput,
+            bdpt: BdptDesc::default(),
             sppm: SppmDesc::default(),
         }
     }

@@ -10,7 +10,7 @@
 //! attribute scopes (`TransformBegin`/`End` as in pbrt-v4), `ReverseOrientation`,
 //! `Camera "perspective"`, `Film "rgb"`, `PixelFilter` box/triangle/gaussian, `Sampler`
 //! independent/stratified and the low-discrepancy ones (one Owen-scrambled Sobol' sampler
-//! for all), `Integrator "path"`/`"direct"` (others fall back to path), `Material`/
+//! for all), `Integrator "path"`/`"direct"`/`"bdpt"` (others fall back to path), `Material`/
 //! `MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix, checkerboard,
 //! imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource "diffuse"`,
 //! `LightSource` point/spot/distant/infinite (see `lights`), shapes `trianglemesh`,

