@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
-use mcrender_scene::pbrt::{load_file, load_str, LoadedScene};
+use mcrender_scene::pbrt::{load_str, LoadedScene};
+use mcrender_scene::{load_with, LoadOptions};
 
 use crate::builtin;
 
@@ -42,8 +43,11 @@ pub enum SamplerChoice {
 /// The scene and what to override in it.
 #[derive(Args, Debug, Default, Clone)]
 pub struct SceneArgs {
-    /// pbrt-v4 scene file; the built-in Cornell box when omitted.
+    /// Scene file (pbrt-v4, or Mitsuba 3 `.xml`); the built-in Cornell box when omitted.
     pub scene: Option<PathBuf>,
+    /// `NAME=VALUE`: set a Mitsuba scene's `$NAME` parameter (overrides its `<default>`).
+    #[arg(short = 'D', value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
     /// Samples per pixel.
     #[arg(long)]
     pub spp: Option<u32>,
@@ -95,6 +99,14 @@ pub fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     Ok((parse(w)?, parse(h)?))
 }
 
+/// Parse `NAME=VALUE`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((n, v)) if !n.is_empty() => Ok((n.to_string(), v.to_string())),
+        _ => Err(format!("expected NAME=VALUE, found \"{s}\"")),
+    }
+}
+
 /// Parse a direct-lighting strategy name.
 pub fn parse_strategy(s: &str) -> Result<DirectStrategy, String> {
     DirectStrategy::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
@@ -108,7 +120,10 @@ impl SceneArgs {
     pub fn load(&self) -> Result<(LoadedScene, String)> {
         let (loaded, stem) = match &self.scene {
             Some(path) => {
-                let loaded = load_file(path).map_err(anyhow::Error::new)?;
+                let options = LoadOptions {
+                    defines: self.define.clone(),
+                };
+                let loaded = load_with(path, &options).map_err(anyhow::Error::new)?;
                 let stem = path
                     .file_stem()
                     .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());

@@ -3,15 +3,22 @@
 //! image writers and readers (PNG, EXR).
 //!
 //! * [`pbrt`]: the pbrt-v4 scene format ([`pbrt::load_file`], [`pbrt::load_str`]);
+//! * [`load`]: the front door, any format by extension;
+//! * [`mitsuba`]: Mitsuba 3 XML scenes ([`mitsuba::load_file`]);
+//! * [`obj`]: Wavefront OBJ meshes;
 //! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
 //!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
 
 mod error;
 pub mod image_io;
+mod load;
+pub mod mitsuba;
+pub mod obj;
 pub mod pbrt;
 pub mod ply;
 
 pub use error::{io_error_text, Location, SceneError, SceneErrorKind};
 pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, ImageError, ImageRgb};
+pub use load::{load, load_with, LoadOptions, SceneFormat};
 pub use pbrt::{load_file, load_str, LoadedScene};
