@@ -7,17 +7,21 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
     CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MaterialDesc, MaterialId,
     SamplerDesc, SamplerKind, SceneDescription,
 };
-use mcrender_core::texture::{FloatTexture, MipMap};
+use mcrender_core::texture::FloatTexture;
 
 use super::props::Props;
 use super::xml::{Element, Reader};
 use crate::error::SceneError;
 use crate::pbrt::LoadedScene;
+
+/// A decoded image: width, height, texels.
+pub type ImageEntry = (u32, u32, Arc<Vec<Rgb>>);
 
 /// A resolved BSDF: the material and the cut-out of a `mask` around it.
 #[derive(Clone, Debug)]
@@ -54,8 +58,8 @@ pub struct Builder {
     pub named: HashMap<String, Named>,
     /// Warnings, `file:line:col: warning: ...`.
     pub warnings: Vec<String>,
-    /// MIP maps of image files, by (path, raw, wrap).
-    pub mipmaps: HashMap<(PathBuf, bool, u8), Arc<MipMap>>,
+    /// Decoded images (width, height, texels), by (path, raw).
+    pub images: HashMap<(PathBuf, bool), ImageEntry>,
     /// The default material (`diffuse`, reflectance 0.5), made on first use.
     default_material: Option<MaterialId>,
 }
@@ -92,7 +96,7 @@ impl Builder {
             desc,
             named: HashMap::new(),
             warnings: Vec::new(),
-            mipmaps: HashMap::new(),
+            images: HashMap::new(),
             default_material: None,
         }
     }
@@ -187,7 +191,7 @@ impl Builder {
             Some(m) => m,
             None => {
                 let m = self.add_material(MaterialDesc::Diffuse {
-                    reflectance: mcrender_core::color::Rgb::splat(0.5).into(),
+                    reflectance: Rgb::splat(0.5).into(),
                 });
                 self.default_material = Some(m);
                 m

@@ -1,6 +1,6 @@
 //! Texturable parameters and textures: a parameter is an `<rgb>`, `<spectrum>`, `<float>`,
 //! a nested `<texture>` or a named `<ref>` to one. Texture plugins: `bitmap` (`filename`,
-//! `raw`, `filter_type` bilinear/nearest, `wrap_mode` repeat/clamp, `to_uv` scale and
+//! `raw`, `filter_type` bilinear/nearest, `wrap_mode` repeat/mirror/clamp, `to_uv` scale and
 //! translation) and `checkerboard` (`color0`, `color1`, `to_uv`).
 //!
 //! Mitsuba's `uv` has `v` pointing down the image (row 0 at `v = 0`); mcrender's meshes
@@ -10,17 +10,17 @@
 //! `color0` where both coordinates fall in the same half; that is pbrt's (side 1, `tex1`
 //! on even squares) at twice the scale.
 //!
-//! Differences: mcrender's bitmap lookups use a MIP level chosen by the pixel footprint
-//! (Mitsuba reads the full-resolution image), and its checkerboard is box filtered
-//! (Mitsuba's is not); both keep the mean over a pixel, not every detail within it.
+//! Bitmaps are read at full resolution without MIP mapping, as Mitsuba does
+//! ([`BitmapTexture`]). Difference: mcrender's checkerboard is box filtered (Mitsuba's is
+//! not), which keeps the mean over a pixel but not every detail within it.
 
 use std::sync::Arc;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Mat4;
 use mcrender_core::texture::{
-    CheckerboardTexture, FloatTexture, ImageTexture, MipFilter, MipFilterOptions, MipMap, RgbTexture, Texture,
-    TextureMapping, TextureValue, WrapMode,
+    BitmapFilter, BitmapTexture, BitmapWrap, CheckerboardTexture, FloatTexture, RgbTexture, Texture, TextureMapping,
+    TextureValue,
 };
 
 use super::builder::{Builder, Named};
@@ -35,15 +35,15 @@ trait Value: TextureValue {
     /// From an RGB constant.
     fn from_rgb(c: Rgb, e: &Element) -> Result<Self, SceneError>;
     /// From an RGB texture image.
-    fn image(t: ImageTexture) -> Texture<Self>;
+    fn bitmap(t: BitmapTexture) -> Texture<Self>;
 }
 
 impl Value for Rgb {
     fn from_rgb(c: Rgb, _: &Element) -> Result<Self, SceneError> {
         Ok(c)
     }
-    fn image(t: ImageTexture) -> Texture<Self> {
-        Texture::Image(Arc::new(t))
+    fn bitmap(t: BitmapTexture) -> Texture<Self> {
+        Texture::Bitmap(Arc::new(t))
     }
 }
 
@@ -58,8 +58,8 @@ impl Value for f32 {
             ))
         }
     }
-    fn image(t: ImageTexture) -> Texture<Self> {
-        Texture::Image(Arc::new(t))
+    fn bitmap(t: BitmapTexture) -> Texture<Self> {
+        Texture::Bitmap(Arc::new(t))
     }
 }
 
@@ -132,10 +132,10 @@ impl Builder {
                     .ok_or_else(|| SceneError::syntax(&e.loc, "a bitmap needs a \"filename\""))?;
                 let raw = p.bool("raw", false)?;
                 let filter = match p.string("filter_type")? {
-                    None => MipFilter::Bilinear,
+                    None => BitmapFilter::Bilinear,
                     Some((f, l)) => match f.as_str() {
-                        "bilinear" => MipFilter::Bilinear,
-                        "nearest" => MipFilter::Point,
+                        "bilinear" => BitmapFilter::Bilinear,
+                        "nearest" => BitmapFilter::Nearest,
                         _ => {
                             return Err(SceneError::syntax(
                                 &l,
@@ -145,11 +145,11 @@ impl Builder {
                     },
                 };
                 let wrap = match p.string("wrap_mode")? {
-                    None => WrapMode::Repeat,
+                    None => BitmapWrap::Repeat,
                     Some((w, l)) => match w.as_str() {
-                        "repeat" => WrapMode::Repeat,
-                        "clamp" => WrapMode::Clamp,
-                        "mirror" => return Err(SceneError::unsupported(&l, "wrap_mode \"mirror\"")),
+                        "repeat" => BitmapWrap::Repeat,
+                        "mirror" => BitmapWrap::Mirror,
+                        "clamp" => BitmapWrap::Clamp,
                         _ => {
                             return Err(SceneError::syntax(
                                 &l,
@@ -160,9 +160,9 @@ impl Builder {
                 };
                 let _ = p.string("format")?;
                 let path = self.resolve(&file);
-                let key = (path.clone(), raw, wrap as u8);
-                let mipmap = match self.mipmaps.get(&key) {
-                    Some(m) => m.clone(),
+                let key = (path.clone(), raw);
+                let (width, height, texels) = match self.images.get(&key) {
+                    Some(i) => i.clone(),
                     None => {
                         let encoding = if raw {
                             ColorEncoding::Linear
@@ -176,25 +176,23 @@ impl Builder {
                             };
                             SceneError::io(&floc, format!("cannot read image {}: {why}", path.display()))
                         })?;
-                        let m = Arc::new(MipMap::new(img.width, img.height, &img.pixels, wrap));
-                        self.mipmaps.insert(key, m.clone());
-                        m
+                        let i = (img.width, img.height, Arc::new(img.pixels));
+                        self.images.insert(key, i.clone());
+                        i
                     }
                 };
-                T::image(ImageTexture {
+                T::bitmap(BitmapTexture {
                     mapping: TextureMapping::Uv {
                         su: a[0],
                         sv: a[1],
                         du: b[0],
                         dv: 1.0 - a[1] - b[1],
                     },
-                    mipmap,
-                    filter: MipFilterOptions {
-                        filter,
-                        max_anisotropy: 8.0,
-                    },
-                    scale: 1.0,
-                    invert: false,
+                    width,
+                    height,
+                    texels,
+                    filter,
+                    wrap,
                 })
             }
             "checkerboard" => {
