@@ -7,15 +7,16 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use mcrender_core::render::{render, RenderOptions, RenderOutput};
-use mcrender_core::scene::Scene;
+use mcrender_core::integrator::sppm::{self, SppmSettings};
+use mcrender_core::render::{RenderOutput, RenderStats};
+use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_scene::image_io::{write_image, ImageRgb};
 
 use crate::builtin;
 use crate::scene_args::SceneArgs;
 
 /// Options of `mcrender render`; flags override what the scene file says.
-#[derive(Args, Debug, Default)]
+#[derive(Args, Debug, Default, Clone)]
 pub struct RenderArgs {
     /// The scene and overrides.
     #[command(flatten)]
@@ -30,6 +31,9 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Checkpoint and resume.
+    #[command(flatten)]
+    pub checkpointing: crate::checkpoint::CheckpointArgs,
 }
 
 impl RenderArgs {
@@ -49,6 +53,9 @@ impl RenderArgs {
 
 /// Run the command.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let resume = crate::checkpoint::prepare_resume(args)?;
+    let args = resume.as_ref().map_or(args, |r| &r.args).clone();
+    let args = &args;
     let (loaded, stem) = args.scene.load()?;
     let mut desc = loaded.description;
     args.scene.apply(&mut desc)?;
@@ -63,17 +70,56 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
+    if desc.integrator.kind == IntegratorKind::Sppm {
+        if args.checkpointing.checkpoint.is_some() || resume.is_some() {
+            bail!("--checkpoint and --resume are not supported by the sppm integrator yet (its photon statistics are not checkpointed)");
+        }
+        return render_sppm(&scene, args, &output);
+    }
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
-    let bar = progress_bar(u64::from(w) * u64::from(h), args.quiet);
-    let opts = RenderOptions {
-        threads: args.scene.threads,
-        ..Default::default()
-    };
-    let out = render(&scene, &opts, &|done, _| bar.set_position(done))?;
-    bar.finish_and_clear();
+    let out = crate::progressive::render(args, resume, &scene, &desc, &output)?;
 
     write_outputs(&out, &output, args.variance_output.as_deref())?;
     print_summary(&out, w, h, spp, &output);
+    Ok(())
+}
+
+/// SPPM has its own driver (iterations of camera and photon passes, not samples per pixel).
+fn render_sppm(scene: &Scene, args: &RenderArgs, output: &Path) -> Result<()> {
+    let settings = SppmSettings::from_scene(scene);
+    let bar = progress_bar(u64::from(settings.iterations), args.quiet);
+    let start = std::time::Instant::now();
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let (sppm, threads) = sppm::render_with_threads(
+        scene,
+        &settings,
+        args.scene.threads,
+        &|done, _| bar.set_position(done),
+        &cancel,
+    )
+    .context("cannot start the render threads")?;
+    bar.finish_and_clear();
+    let out = RenderOutput {
+        film: sppm.film,
+        stats: RenderStats {
+            elapsed: start.elapsed(),
+            paths: sppm.photons,
+            trace: sppm.trace,
+            threads,
+            ..Default::default()
+        },
+    };
+    write_outputs(&out, output, args.variance_output.as_deref())?;
+    let secs = out.stats.elapsed.as_secs_f64().max(1e-9);
+    eprintln!(
+        "{}: {}x{}, SPPM {} iterations x {} photons in {secs:.2} s on {threads} threads: {:.2} M photons/s",
+        output.display(),
+        out.film.width(),
+        out.film.height(),
+        sppm.iterations,
+        settings.photons_per_iteration,
+        sppm.photons as f64 / secs / 1e6,
+    );
     Ok(())
 }
 

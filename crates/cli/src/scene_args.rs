@@ -18,6 +18,10 @@ pub enum IntegratorChoice {
     Path,
     /// Emission and direct lighting at the first hit only.
     Direct,
+    /// Light tracing: paths from the lights, connected to the camera.
+    Lightpath,
+    /// Stochastic progressive photon mapping (the scene's or pbrt's SPPM parameters).
+    Sppm,
 }
 
 /// Russian roulette presets.
@@ -172,6 +176,8 @@ impl SceneArgs {
             desc.integrator.kind = match i {
                 IntegratorChoice::Path => IntegratorKind::Path,
                 IntegratorChoice::Direct => IntegratorKind::Direct,
+                IntegratorChoice::Lightpath => IntegratorKind::LightPath,
+                IntegratorChoice::Sppm => IntegratorKind::Sppm,
             };
         }
         if let Some(d) = self.direct {

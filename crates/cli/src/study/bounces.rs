@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use mcrender_core::render::{render, RenderOptions};
+use mcrender_core::render::{RenderOptions, RenderSession};
 use mcrender_core::scene::Scene;
 
 use super::{film_image, write_into};
@@ -39,14 +39,11 @@ pub fn run(args: &BouncesArgs) -> Result<()> {
         let mut desc = base.clone();
         desc.integrator.max_depth = depth;
         let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
-        let out = render(
-            &scene,
-            &RenderOptions {
-                threads: args.scene.threads,
-                ..Default::default()
-            },
-            &|_, _| {},
-        )?;
+        let opts = RenderOptions {
+            threads: args.scene.threads,
+            ..Default::default()
+        };
+        let out = RenderSession::new(&scene, &opts)?.render_samples(0..desc.sampler.samples_per_pixel, &())?;
         let img = film_image(&out.film);
         let path = write_into(&args.out_dir, &format!("{stem}-depth-{depth}.png"), &img)?;
         println!(

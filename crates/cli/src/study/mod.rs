@@ -7,60 +7,12 @@ pub mod compare;
 pub mod rr_study;
 
 use std::path::Path;
-use std::time::Duration;
 
 use anyhow::{Context, Result};
 use mcrender_core::color::Rgb;
 use mcrender_core::film::Film;
-use mcrender_core::render::{render_samples, RenderOptions};
-use mcrender_core::scene::{Scene, SceneDescription};
+pub use mcrender_core::lab::render_in_waves;
 use mcrender_scene::image_io::{read_exr, write_image, ImageRgb};
-
-/// A film grown in waves of doubling sample counts, with the time spent and a measurement
-/// after every wave.
-pub struct Progression {
-    /// The accumulated film.
-    pub film: Film,
-    /// Render time summed over waves (scene building excluded).
-    pub time: Duration,
-    /// Rays traced (closest-hit and shadow).
-    pub rays: u64,
-    /// `(samples per pixel so far, measurement)` after each wave.
-    pub points: Vec<(u32, f64)>,
-}
-
-/// Render `desc` up to its sample count in waves 1, 2, 4, ... (the last wave tops up to
-/// the sample count), calling `measure` on the film after each.
-pub fn render_in_waves(
-    desc: &SceneDescription,
-    threads: Option<usize>,
-    measure: impl Fn(&Film) -> f64,
-) -> Result<Progression> {
-    let scene = Scene::build(desc).context("the scene cannot be rendered")?;
-    let spp = desc.sampler.samples_per_pixel;
-    let opts = RenderOptions {
-        threads,
-        ..Default::default()
-    };
-    let mut film = Film::new(desc.film.width, desc.film.height);
-    let (mut time, mut rays, mut points) = (Duration::ZERO, 0, Vec::new());
-    let mut done = 0;
-    while done < spp {
-        let next = (done * 2).clamp(1, spp);
-        let out = render_samples(&scene, &opts, done..next, &|_, _| {})?;
-        film.merge(&out.film);
-        time += out.stats.elapsed;
-        rays += out.stats.trace.rays + out.stats.trace.shadow_rays;
-        done = next;
-        points.push((done, measure(&film)));
-    }
-    Ok(Progression {
-        film,
-        time,
-        rays,
-        points,
-    })
-}
 
 /// The film's estimate as an image.
 pub fn film_image(film: &Film) -> ImageRgb {

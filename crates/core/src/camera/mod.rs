@@ -1,8 +1,10 @@
-//! Layer 2: cameras. One variant for now: pbrt's perspective camera.
+//! Layer 2: cameras. One variant for now: pbrt's perspective camera. Cameras generate rays
+//! from film positions and, for light tracing, report the importance of rays reaching them
+//! ([`Camera::we`], [`Camera::pdf_we`], [`Camera::sample_wi`]).
 
 mod perspective;
 
-pub use perspective::PerspectiveCamera;
+pub use perspective::{CameraWiSample, PerspectiveCamera};
 
 use crate::math::{Ray, Vec2, Vec3};
 
@@ -30,6 +32,32 @@ impl Camera {
     pub fn approximate_dp_dxy(&self, p: Vec3, n: Vec3, samples_per_pixel: u32) -> (Vec3, Vec3) {
         match self {
             Self::Perspective(c) => c.approximate_dp_dxy(p, n, samples_per_pixel),
+        }
+    }
+
+    /// Importance of `ray` leaving the lens, and where it lands on the film (raster
+    /// coordinates); `None` when it misses the film (see [`PerspectiveCamera::we`]).
+    #[must_use]
+    pub fn we(&self, ray: &Ray) -> Option<(f32, Vec2)> {
+        match self {
+            Self::Perspective(c) => c.we(ray),
+        }
+    }
+
+    /// Densities `(pdf_pos, pdf_dir)` of generating `ray` (see [`PerspectiveCamera::pdf_we`]).
+    #[must_use]
+    pub fn pdf_we(&self, ray: &Ray) -> (f32, f32) {
+        match self {
+            Self::Perspective(c) => c.pdf_we(ray),
+        }
+    }
+
+    /// A lens point that sees `p_ref`, with its importance and density (see
+    /// [`PerspectiveCamera::sample_wi`]).
+    #[must_use]
+    pub fn sample_wi(&self, p_ref: Vec3, u: Vec2) -> Option<CameraWiSample> {
+        match self {
+            Self::Perspective(c) => c.sample_wi(p_ref, u),
         }
     }
 }

@@ -3,6 +3,11 @@
 //! downwards while camera +y is up; the camera looks down +z. A thin lens of `lens_radius`
 //! focuses at `focal_distance`.
 
+#[path = "importance.rs"]
+mod importance;
+
+pub use importance::CameraWiSample;
+
 use crate::math::{Frame, Ray, Transform, Vec2, Vec3};
 use crate::sampling::sample_uniform_disk_concentric;
 use crate::scene::{CameraDesc, FilmDesc};

@@ -5,7 +5,12 @@
 //! pixel value is the weighted mean `sum(w L) / sum(w)`. Its variance is estimated from the
 //! samples' own spread: with `n` samples, `Var[mean] ~= s^2 / n` where `s^2` is the unbiased
 //! sample variance of the `w L / mean(w)` values.
+//!
+//! Beside the samples, each pixel has a splat sum ([`super::Splat`]); the displayed value is
+//! `mean + splat_sum / spp` with `spp` the samples per pixel of the whole film. The variance
+//! covers the pixel's own samples only.
 
+use super::Splat;
 use crate::color::Rgb;
 
 /// Running sums for one pixel, in `f64` so long renders do not lose precision.
@@ -74,23 +79,51 @@ impl PixelStats {
     }
 }
 
-/// An image of pixel accumulators, row-major with row 0 at the top.
+/// An image of pixel accumulators, row-major with row 0 at the top, with a splat sum per
+/// pixel and the number of samples per pixel rendered into it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<PixelStats>,
+    /// Sum of the splats landing in each pixel, per channel, in `f64` like the samples.
+    splats: Vec<[f64; 3]>,
+    /// Samples per pixel rendered (sample indices, counting dropped non-finite samples).
+    samples_per_pixel: u64,
 }
 
 impl Film {
     /// An empty film.
     #[must_use]
     pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
         Self {
             width,
             height,
-            pixels: vec![PixelStats::default(); width as usize * height as usize],
+            pixels: vec![PixelStats::default(); n],
+            splats: vec![[0.0; 3]; n],
+            samples_per_pixel: 0,
         }
+    }
+
+    /// A film from its parts (as a checkpoint stores them); `None` when the lengths do not
+    /// match the size.
+    #[must_use]
+    pub fn from_parts(
+        width: u32,
+        height: u32,
+        pixels: Vec<PixelStats>,
+        splats: Vec<[f64; 3]>,
+        samples_per_pixel: u64,
+    ) -> Option<Self> {
+        let n = (width as usize).checked_mul(height as usize)?;
+        (pixels.len() == n && splats.len() == n).then_some(Self {
+            width,
+            height,
+            pixels,
+            splats,
+            samples_per_pixel,
+        })
     }
 
     /// Width in pixels.
@@ -122,7 +155,42 @@ impl Film {
         &self.pixels
     }
 
-    /// Add another film's samples of the same image (e.g. a later wave of samples).
+    /// All splat sums, row-major.
+    #[must_use]
+    pub fn splat_sums(&self) -> &[[f64; 3]] {
+        &self.splats
+    }
+
+    /// Samples per pixel rendered into this film (the `spp` splats are divided by).
+    #[must_use]
+    pub fn samples_per_pixel(&self) -> u64 {
+        self.samples_per_pixel
+    }
+
+    /// Record that `n` more samples per pixel were rendered into the film.
+    pub fn add_samples_per_pixel(&mut self, n: u64) {
+        self.samples_per_pixel += n;
+    }
+
+    /// Add a splat to the pixel containing its position. Splats outside the image or with
+    /// a non-finite value are dropped (returns `false`).
+    pub fn add_splat(&mut self, s: &Splat) -> bool {
+        let (x, y) = (s.p_film.x.floor(), s.p_film.y.floor());
+        let inside = x >= 0.0 && y >= 0.0 && x < self.width as f32 && y < self.height as f32;
+        if !inside || !s.l.is_finite() {
+            return false;
+        }
+        let sum = &mut self.splats[y as usize * self.width as usize + x as usize];
+        for (c, v) in sum.iter_mut().enumerate() {
+            *v += f64::from(s.l[c]);
+        }
+        true
+    }
+
+    /// Add another film's samples of the same image (e.g. a later wave of samples): the
+    /// accumulators, splat sums and sample counts add. (Floating-point addition does not
+    /// associate, so this equals a single render up to rounding; the render session
+    /// continues a film instead, which is exact.)
     ///
     /// # Panics
     /// When the sizes differ.
@@ -135,15 +203,35 @@ impl Film {
         for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
             a.merge(b);
         }
+        for (a, b) in self.splats.iter_mut().zip(&other.splats) {
+            for c in 0..3 {
+                a[c] += b[c];
+            }
+        }
+        self.samples_per_pixel += other.samples_per_pixel;
     }
 
-    /// The estimate of every pixel.
+    /// The estimate of every pixel: the mean of its samples plus its splats over the spp.
     #[must_use]
     pub fn mean_image(&self) -> Vec<Rgb> {
-        self.pixels.iter().map(PixelStats::mean).collect()
+        let spp = self.samples_per_pixel as f64;
+        self.pixels
+            .iter()
+            .zip(&self.splats)
+            .map(|(p, s)| {
+                if *s == [0.0; 3] || spp == 0.0 {
+                    return p.mean();
+                }
+                let m = |c: usize| {
+                    let mean = if p.sum_w == 0.0 { 0.0 } else { p.sum_wl[c] / p.sum_w };
+                    (mean + s[c] / spp) as f32
+                };
+                Rgb::new(m(0), m(1), m(2))
+            })
+            .collect()
     }
 
-    /// The variance of every pixel's estimate.
+    /// The variance of every pixel's estimate (its own samples; splats are not counted).
     #[must_use]
     pub fn variance_image(&self) -> Vec<Rgb> {
         self.pixels.iter().map(PixelStats::variance_of_mean).collect()
@@ -163,6 +251,34 @@ mod tests {
         assert!((p.mean().r - 2.5).abs() < 1e-6);
         // Sample variance of 1..4 is 5/3; of the mean, 5/12.
         assert!((p.variance_of_mean().g - 5.0 / 12.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn splats_add_over_the_whole_image_spp() {
+        let mut f = Film::new(2, 1);
+        f.pixel_mut(0, 0).add(Rgb::splat(1.0), 1.0);
+        f.pixel_mut(0, 0).add(Rgb::splat(3.0), 1.0);
+        f.add_samples_per_pixel(2);
+        assert!(f.add_splat(&Splat {
+            p_film: crate::math::Vec2::new(1.7, 0.2),
+            l: Rgb::splat(4.0),
+        }));
+        assert!(!f.add_splat(&Splat {
+            p_film: crate::math::Vec2::new(2.0, 0.5),
+            l: Rgb::splat(1.0),
+        }));
+        assert!(!f.add_splat(&Splat {
+            p_film: crate::math::Vec2::new(0.5, 0.5),
+            l: Rgb::splat(f32::NAN),
+        }));
+        let img = f.mean_image();
+        assert_eq!(img[0], Rgb::splat(2.0));
+        // No samples of its own, one splat of 4 over 2 spp.
+        assert_eq!(img[1], Rgb::splat(2.0));
+        let mut g = f.clone();
+        g.merge(&f);
+        assert_eq!(g.samples_per_pixel(), 4);
+        assert_eq!(g.mean_image()[1], Rgb::splat(2.0));
     }
 
     #[test]

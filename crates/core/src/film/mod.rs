@@ -1,8 +1,9 @@
-//! Layer 2: the film (per-pixel accumulators, per-pixel variance) and pixel filters.
+//! Layer 2: the film (per-pixel accumulators, per-pixel variance, splat sums) and pixel filters.
 
 mod accumulator;
 mod compare;
 mod filter;
+mod splat;
 mod statistics;
 
 pub use accumulator::{Film, PixelStats};
@@ -10,4 +11,5 @@ pub use compare::{
     block_means_of, downsample_box, pixel_rel_error, CompareError, ImageComparison, BLOCK_REL_EPSILON, DEFAULT_BLOCK,
 };
 pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
+pub use splat::Splat;
 pub use statistics::{FilmStatistics, REL_MSE_EPSILON};

@@ -4,16 +4,24 @@
 //! hemisphere sampling (uniform or cosine), light sampling, BSDF sampling, or both combined
 //! by multiple importance sampling. Each is unbiased for every scene it accepts; the
 //! strategies that can only find light by hitting it refuse scenes with point-like lights.
+//!
+//! Light tracing ([`LightPathIntegrator`]) traces paths from the lights and splats their
+//! camera connections. Stochastic progressive photon mapping ([`sppm`]) does not work per
+//! camera sample and has its own driver, [`sppm::render`].
 
 mod direct;
+mod lightpath;
 mod path;
 mod roulette;
+pub mod sppm;
 
 pub use direct::DirectEstimator;
+pub use lightpath::LightPathIntegrator;
 pub use path::PathIntegrator;
 pub use roulette::roulette;
 
 use crate::color::Rgb;
+use crate::film::Splat;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::{DirectStrategy, IntegratorKind, Scene};
@@ -48,6 +56,12 @@ pub enum IntegratorError {
         /// Number of such lights.
         count: usize,
     },
+    /// The integrator does not render per camera sample; its module has its own driver.
+    #[error("integrator \"{name}\" is rendered by its own driver (integrator::{name}::render), not per camera sample")]
+    OwnDriver {
+        /// The integrator's name.
+        name: &'static str,
+    },
 }
 
 /// The closed set of integrators.
@@ -55,6 +69,8 @@ pub enum IntegratorError {
 pub enum Integrator {
     /// Unidirectional path tracing (direct lighting only is a path of depth one).
     Path(PathIntegrator),
+    /// Light tracing: every sample is a light path whose camera connections are splats.
+    LightPath(LightPathIntegrator),
 }
 
 impl Integrator {
@@ -62,6 +78,16 @@ impl Integrator {
     /// scene without bias.
     pub fn new(scene: &Scene) -> Result<Self, IntegratorError> {
         let s = &scene.integrator;
+        match s.kind {
+            IntegratorKind::LightPath => {
+                return Ok(Self::LightPath(LightPathIntegrator {
+                    max_depth: s.max_depth,
+                    russian_roulette: s.russian_roulette,
+                }))
+            }
+            IntegratorKind::Sppm => return Err(IntegratorError::OwnDriver { name: "sppm" }),
+            IntegratorKind::Path | IntegratorKind::Direct => {}
+        }
         let delta_lights = scene.lights.iter().filter(|l| l.is_delta()).count();
         if s.direct.needs_emitter_hits() && delta_lights > 0 {
             return Err(IntegratorError::InvisibleLights {
@@ -72,6 +98,7 @@ impl Integrator {
         let max_depth = match s.kind {
             IntegratorKind::Path => s.max_depth,
             IntegratorKind::Direct => s.max_depth.min(1),
+            IntegratorKind::LightPath | IntegratorKind::Sppm => unreachable!("handled above"),
         };
         Ok(Self::Path(PathIntegrator {
             max_depth,
@@ -83,10 +110,38 @@ impl Integrator {
         }))
     }
 
-    /// Radiance arriving at the camera along `ray`.
-    pub fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler, stats: &mut TraceStats) -> Rgb {
+    /// Radiance arriving at the camera along `ray`. Contributions to other pixels (light
+    /// tracing) are pushed onto `splats` in the order they are made; the path tracer never
+    /// pushes.
+    pub fn li(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut Sampler,
+        stats: &mut TraceStats,
+        splats: &mut Vec<Splat>,
+    ) -> Rgb {
         match self {
-            Self::Path(p) => p.li(scene, ray, sampler, stats),
+            Self::Path(p) => {
+                let _ = splats;
+                p.li(scene, ray, sampler, stats)
+            }
+            Self::LightPath(lp) => {
+                // The camera ray is not used: everything arrives as splats.
+                let _ = ray;
+                lp.trace(scene, sampler, stats, &mut |p_film, l| splats.push(Splat { p_film, l }));
+                Rgb::BLACK
+            }
+        }
+    }
+
+    /// Whether [`Self::li`] may push splats (the render session then renders one sample
+    /// index at a time, so that splats are added in a fixed order with bounded memory).
+    #[must_use]
+    pub fn splats(&self) -> bool {
+        match self {
+            Self::Path(_) => false,
+            Self::LightPath(_) => true,
         }
     }
 }

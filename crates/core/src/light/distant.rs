@@ -16,12 +16,16 @@ pub struct DistantLight {
     pub radiance: Rgb,
     /// Radius of the scene's bounding sphere, set by [`Self::preprocess`].
     pub scene_radius: f32,
+    /// Centre of the scene's bounding sphere, set by [`Self::preprocess`] (where emitted
+    /// rays start from, see [`super::Light::sample_le`]).
+    pub scene_center: Vec3,
 }
 
 impl DistantLight {
     /// Remember the scene's size: shadow rays end outside it, and the power depends on it.
     pub fn preprocess(&mut self, scene_bounds: &Bounds3) {
         self.scene_radius = super::scene_radius(scene_bounds);
+        self.scene_center = super::scene_center(scene_bounds);
     }
 
     /// The single direction to the light; `u` is unused. The shadow-ray end lies outside

@@ -51,7 +51,9 @@ pub struct ImageInfiniteLight {
     inv_det: f32,
     distribution: PiecewiseConstant2D,
     /// Radius of the scene's bounding sphere, set by [`Self::preprocess`].
-    scene_radius: f32,
+    pub(super) scene_radius: f32,
+    /// Centre of the scene's bounding sphere, set by [`Self::preprocess`].
+    pub(super) scene_center: Vec3,
 }
 
 impl ImageInfiniteLight {
@@ -99,12 +101,14 @@ impl ImageInfiniteLight {
             inv_det: light_from_world.determinant().abs(),
             distribution,
             scene_radius: 0.0,
+            scene_center: Vec3::ZERO,
         }
     }
 
     /// Remember the scene's size: shadow rays end outside it, and the power depends on it.
     pub fn preprocess(&mut self, scene_bounds: &Bounds3) {
         self.scene_radius = super::scene_radius(scene_bounds);
+        self.scene_center = super::scene_center(scene_bounds);
     }
 
     /// The light-space direction of the point `uv` of the image square.

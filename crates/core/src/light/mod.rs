@@ -10,6 +10,7 @@
 
 mod diffuse_area;
 mod distant;
+mod emission;
 mod image_infinite;
 mod point;
 mod sampler;
@@ -18,6 +19,7 @@ mod uniform_infinite;
 
 pub use diffuse_area::DiffuseAreaLight;
 pub use distant::DistantLight;
+pub use emission::LightLeSample;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 pub use point::PointLight;
 pub use sampler::PowerLightSampler;
@@ -80,6 +82,17 @@ pub fn scene_radius(bounds: &Bounds3) -> f32 {
         0.0
     } else {
         0.5 * bounds.diagonal().length()
+    }
+}
+
+/// Centre of the bounding sphere of `bounds` (the origin when empty), as pbrt's
+/// `sceneCenter`.
+#[must_use]
+pub fn scene_center(bounds: &Bounds3) -> Vec3 {
+    if bounds.is_empty() {
+        Vec3::ZERO
+    } else {
+        0.5 * (bounds.min + bounds.max)
     }
 }
 

@@ -447,6 +447,7 @@ fn uniform_infinite_light_sampling_matches_its_pdf() {
     let mut l = Light::UniformInfinite(UniformInfiniteLight {
         radiance: Rgb::splat(2.0),
         scene_radius: 0.0,
+        scene_center: Vec3::ZERO,
     });
     l.preprocess(&unit_bounds());
     check_infinite_light(&l, "uniform");
@@ -481,11 +482,13 @@ fn infinite_and_distant_light_powers() {
         Light::UniformInfinite(UniformInfiniteLight {
             radiance: Rgb::splat(2.0),
             scene_radius: 0.0,
+            scene_center: Vec3::ZERO,
         }),
         Light::Distant(DistantLight {
             direction: Vec3::Z,
             radiance: Rgb::splat(2.0),
             scene_radius: 0.0,
+            scene_center: Vec3::ZERO,
         }),
         Light::ImageInfinite(ImageInfiniteLight::new(
             4,
@@ -567,6 +570,7 @@ fn distant_light_sample() {
         direction: Vec3::new(0.0, 0.6, 0.8),
         radiance: Rgb::splat(5.0),
         scene_radius: 0.0,
+        scene_center: Vec3::ZERO,
     });
     l.preprocess(&unit_bounds());
     let recv = Interaction::point(Vec3::new(0.5, -0.5, 0.5));
@@ -585,6 +589,7 @@ fn power_sampler_weighs_infinite_lights_by_scene_size() {
         Light::UniformInfinite(UniformInfiniteLight {
             radiance: Rgb::splat(1.0),
             scene_radius: 0.0,
+            scene_center: Vec3::ZERO,
         }),
         Light::Point(PointLight {
             position: Vec3::ZERO,

@@ -1,21 +1,40 @@
-//! Layer 6: rendering a whole image. The image is cut into tiles rendered in parallel with
-//! rayon. Every sample draws its random numbers from (seed, pixel, sample index) alone and
-//! each pixel's samples are accumulated in index order, so the image is bit-identical
-//! whatever the number of threads or the order tiles finish in.
+//! Layer 6: rendering a whole image. A [`RenderSession`] is built once per render (thread
+//! pool, integrator, tiles, film) and advanced by consecutive ranges of sample indices
+//! (waves, as pbrt-v4 renders), the tiles of each wave rendered in parallel with rayon.
+//!
+//! Determinism. Every sample draws its random numbers from (seed, pixel, sample index)
+//! alone. Each pixel's samples are accumulated in index order, and a wave *continues* the
+//! pixel's accumulator from the previous wave rather than summing into a fresh one and
+//! merging (floating-point addition does not associate), so a render in waves is
+//! bit-identical to one pass, whatever the number of threads or the order tiles finish in.
+//!
+//! Splats (light-tracing contributions to arbitrary pixels, [`crate::film::Splat`]) are
+//! collected per tile in the order the integrator makes them, tagged with the pixel whose
+//! sample made them, and added to the film's splat sums only after the wave, on one thread,
+//! in row-major order of that pixel. When the integrator splats, a wave is one sample index,
+//! so the order of additions to a splat sum is (sample index, pixel, order made): the same
+//! for any thread count, tile size, or split of the render into ranges, and the memory held
+//! is one sample per pixel's worth of splats.
+//!
+//! Cancellation: the observer's flag ([`RenderObserver::cancel_flag`]) is checked before
+//! every work unit (a tile of a wave); a cancelled wave is dropped whole, so the film always
+//! holds a whole number of samples per pixel and can be checkpointed and continued.
 
+mod observer;
+mod session;
 mod tiles;
+mod waves;
 
+pub use observer::{is_cancelled, ProgressFn, RenderObserver, Watch};
+pub use session::RenderSession;
 pub use tiles::{tiles, Tile};
+pub use waves::doubling_waves;
 
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::{Duration, Instant};
+use std::ops::Range;
+use std::time::Duration;
 
-use rayon::prelude::*;
-
-use crate::film::{Film, PixelStats};
-use crate::integrator::{Integrator, TraceStats};
-use crate::math::{UVec2, Vec2};
-use crate::sampling::Sampler;
+use crate::film::Film;
+use crate::integrator::TraceStats;
 use crate::scene::Scene;
 
 /// How to render.
@@ -47,6 +66,8 @@ pub struct RenderStats {
     pub trace: TraceStats,
     /// Samples whose value was NaN or infinite; they were dropped, not accumulated.
     pub nonfinite_samples: u64,
+    /// Splats dropped: outside the image or not finite.
+    pub dropped_splats: u64,
     /// Threads used.
     pub threads: usize,
 }
@@ -60,7 +81,7 @@ pub struct RenderOutput {
     pub stats: RenderStats,
 }
 
-/// Why a render could not run.
+/// Why a render could not run (or did not finish).
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
     /// The integrator cannot render this scene as configured.
@@ -74,10 +95,32 @@ pub enum RenderError {
         /// Cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// The cancel flag was set; the film holds the completed waves.
+    #[error("render cancelled after {samples_done} samples per pixel")]
+    Cancelled {
+        /// Samples per pixel in the film.
+        samples_done: u64,
+    },
+    /// A range that does not continue the session's film.
+    #[error("sample range {}..{} does not continue the render, which stopped at sample {next}", found.start, found.end)]
+    SampleRange {
+        /// Where the next range must start.
+        next: u32,
+        /// The range asked for.
+        found: Range<u32>,
+    },
+    /// A film of another size than the scene's.
+    #[error("film of {}x{} for a {}x{} image", found.0, found.1, expected.0, expected.1)]
+    FilmSize {
+        /// The scene's image size.
+        expected: (u32, u32),
+        /// The film's.
+        found: (u32, u32),
+    },
 }
 
-/// Render the scene; `progress(done, total)` is called (from worker threads) as tiles
-/// finish, with counts in pixels.
+/// Render the scene in one pass; `progress(done, total)` is called (from worker threads) as
+/// tiles finish, with counts in pixel samples.
 pub fn render(
     scene: &Scene,
     opts: &RenderOptions,
@@ -86,87 +129,19 @@ pub fn render(
     render_samples(scene, opts, 0..scene.sampler.samples_per_pixel, progress)
 }
 
-/// Render only the samples with indices in `samples` of every pixel. Films of disjoint
-/// ranges merge ([`Film::merge`]) into exactly the film of their union, so a render can
-/// grow in waves (convergence studies, progressive output) and stay deterministic.
+/// Render only the samples with indices in `samples` of every pixel, in a session of its
+/// own. Films of disjoint ranges merge ([`Film::merge`]) into the film of their union up to
+/// rounding; for the exact bytes, continue one [`RenderSession`].
 pub fn render_samples(
     scene: &Scene,
     opts: &RenderOptions,
-    samples: std::ops::Range<u32>,
+    samples: Range<u32>,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<RenderOutput, RenderError> {
-    let threads = opts.threads.unwrap_or_else(rayon::current_num_threads).max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|source| RenderError::ThreadPool { threads, source })?;
-    let integrator = Integrator::new(scene)?;
-    let (w, h) = (scene.film.width, scene.film.height);
-    let tile_list = tiles(w, h, opts.tile_size.max(1));
-    let total = u64::from(w) * u64::from(h);
-    let done = AtomicU64::new(0);
-    let start = Instant::now();
-
-    let results: Vec<(Tile, Vec<PixelStats>, TraceStats, u64)> = pool.install(|| {
-        tile_list
-            .par_iter()
-            .map(|tile| {
-                let (pixels, trace, nonfinite) = render_tile(scene, &integrator, tile, samples.clone());
-                let n = done.fetch_add(tile.pixel_count(), Ordering::Relaxed) + tile.pixel_count();
-                progress(n, total);
-                (*tile, pixels, trace, nonfinite)
-            })
-            .collect()
-    });
-
-    let mut film = Film::new(w, h);
-    let mut stats = RenderStats {
-        threads,
-        ..Default::default()
-    };
-    for (tile, pixels, trace, nonfinite) in results {
-        for (i, p) in pixels.into_iter().enumerate() {
-            let (x, y) = tile.pixel_at(i);
-            *film.pixel_mut(x, y) = p;
-        }
-        stats.trace += trace;
-        stats.nonfinite_samples += nonfinite;
-    }
-    stats.elapsed = start.elapsed();
-    stats.paths = total * u64::from(samples.end.saturating_sub(samples.start));
-    Ok(RenderOutput { film, stats })
-}
-
-/// Render the given samples of every pixel in a tile, in tile order.
-fn render_tile(
-    scene: &Scene,
-    integrator: &Integrator,
-    tile: &Tile,
-    samples: std::ops::Range<u32>,
-) -> (Vec<PixelStats>, TraceStats, u64) {
-    let mut sampler = Sampler::new(&scene.sampler);
-    let mut trace = TraceStats::default();
-    let mut nonfinite = 0;
-    let mut out = Vec::with_capacity(tile.pixel_count() as usize);
-    for i in 0..tile.pixel_count() as usize {
-        let (x, y) = tile.pixel_at(i);
-        let pixel = UVec2::new(x, y);
-        let mut acc = PixelStats::default();
-        for s in samples.clone() {
-            sampler.start_pixel_sample(pixel, s);
-            // Offset drawn from the filter: the sample lands at centre + offset with a
-            // weight of about one, so nothing is splatted into neighbouring pixels.
-            let fs = scene.filter.sample(sampler.get_pixel_2d());
-            let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
-            let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
-            let l = integrator.li(scene, ray, &mut sampler, &mut trace);
-            if l.is_finite() && fs.weight.is_finite() {
-                acc.add(l, fs.weight);
-            } else {
-                nonfinite += 1;
-            }
-        }
-        out.push(acc);
-    }
-    (out, trace, nonfinite)
+    let mut session = RenderSession::new(scene, opts)?;
+    let stats = session.advance(samples, &ProgressFn(progress))?;
+    Ok(RenderOutput {
+        film: session.into_film(),
+        stats,
+    })
 }

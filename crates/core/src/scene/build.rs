@@ -653,10 +653,12 @@ impl Scene {
                     direction: direction.normalize(),
                     radiance,
                     scene_radius: 0.0,
+                    scene_center: Vec3::ZERO,
                 }),
                 &LightDesc::UniformInfinite { radiance } => Light::UniformInfinite(UniformInfiniteLight {
                     radiance,
                     scene_radius: 0.0,
+                    scene_center: Vec3::ZERO,
                 }),
                 LightDesc::ImageInfinite(e) => Light::ImageInfinite(ImageInfiniteLight::new(
                     e.image.width,

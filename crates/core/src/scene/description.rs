@@ -184,6 +184,36 @@ pub enum IntegratorKind {
     Path,
     /// Emission plus direct lighting at the first hit only (`Integrator "direct"`).
     Direct,
+    /// Light tracing: paths from the lights connected to the camera (`Integrator
+    /// "lightpath"`).
+    LightPath,
+    /// Stochastic progressive photon mapping (`Integrator "sppm"`), rendered by its own
+    /// driver (`integrator::sppm::render`).
+    Sppm,
+}
+
+/// Parameters of `Integrator "sppm"` (pbrt-v4's names and defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SppmDesc {
+    /// Camera and photon passes (`numiterations`, default 64).
+    pub iterations: u32,
+    /// Photons per pass (`photonsperiteration`); `None` (pbrt's -1) = the pixel count.
+    pub photons_per_iteration: Option<u64>,
+    /// Initial search radius (`radius`, default 1).
+    pub radius: f32,
+    /// Seed (`seed`); `None` = the sampler's seed.
+    pub seed: Option<u64>,
+}
+
+impl Default for SppmDesc {
+    fn default() -> Self {
+        Self {
+            iterations: 64,
+            photons_per_iteration: None,
+            radius: 1.0,
+            seed: None,
+        }
+    }
 }
 
 /// How the direct lighting at each path vertex is estimated.
@@ -265,6 +295,8 @@ pub struct IntegratorDesc {
     pub light_samples: u32,
     /// Russian roulette.
     pub russian_roulette: RussianRoulette,
+    /// SPPM parameters (used by [`IntegratorKind::Sppm`]).
+    pub sppm: SppmDesc,
 }
 
 impl Default for IntegratorDesc {
@@ -275,6 +307,7 @@ impl Default for IntegratorDesc {
             direct: DirectStrategy::Mis,
             light_samples: 1,
             russian_roulette: RussianRoulette::Throughput,
+            sppm: SppmDesc::default(),
         }
     }
 }

@@ -5,6 +5,7 @@ use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
     CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, RussianRoulette, SamplerKind,
+    SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -236,16 +237,17 @@ impl SceneBuilder {
         self.require_options("Integrator", loc)?;
         let integrator_kind = match kind {
             "direct" | "directlighting" => IntegratorKind::Direct,
+            "lightpath" => IntegratorKind::LightPath,
+            "sppm" => IntegratorKind::Sppm,
             _ => IntegratorKind::Path,
         };
         match kind {
-            "path" | "direct" | "directlighting" => {}
+            "path" | "direct" | "directlighting" | "lightpath" | "sppm" => {}
             "volpath" => self.warn(
                 loc,
                 "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
             ),
-            "bdpt" | "mlt" | "sppm" | "simplepath" | "lightpath" | "randomwalk" | "ambientocclusion"
-            | "simplevolpath" => {
+            "bdpt" | "mlt" | "simplepath" | "randomwalk" | "ambientocclusion" | "simplevolpath" => {
                 self.warn(
                     loc,
                     format!("integrator \"{kind}\" is not implemented yet; using \"path\""),
@@ -275,12 +277,18 @@ impl SceneBuilder {
             return Err(param_error(params, "lightsamples", "must be at least 1"));
         }
         let russian_roulette = russian_roulette(params)?;
+        let sppm = if integrator_kind == IntegratorKind::Sppm {
+            sppm_params(params)?
+        } else {
+            SppmDesc::default()
+        };
         self.integrator = IntegratorDesc {
             kind: integrator_kind,
             max_depth: max_depth as u32,
             direct,
             light_samples: light_samples as u32,
             russian_roulette,
+            sppm,
         };
         self.warn_unused(params);
         Ok(())
@@ -385,6 +393,37 @@ fn resolution(params: &ParamSet, name: &str, default: i32) -> Result<i32, SceneE
 /// mcrender's Russian roulette parameters of `Integrator`: `"string russianroulette"`
 /// (`"off"`, `"throughput"` = pbrt's rule, the default, or `"threshold"`), and for the
 /// lecture's rule `"float rrthreshold"` and `"float rrprobability"` (giving either selects it).
+/// `Integrator "sppm"`'s parameters: `numiterations`, `photonsperiteration` (-1: the pixel
+/// count), `radius`, `seed`.
+fn sppm_params(params: &ParamSet) -> Result<SppmDesc, SceneError> {
+    let iterations = params.int("numiterations", 64)?;
+    if iterations < 1 {
+        return Err(param_error(params, "numiterations", "must be at least 1"));
+    }
+    let photons = params.int("photonsperiteration", -1)?;
+    if photons == 0 || photons < -1 {
+        return Err(param_error(
+            params,
+            "photonsperiteration",
+            "must be positive (or -1: the pixel count)",
+        ));
+    }
+    let radius = params.float("radius", 1.0)?;
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(param_error(params, "radius", "must be a positive number"));
+    }
+    let seed = match params.get("seed") {
+        Some(_) => Some(u64::from(params.int("seed", 0)?.unsigned_abs())),
+        None => None,
+    };
+    Ok(SppmDesc {
+        iterations: iterations as u32,
+        photons_per_iteration: (photons > 0).then_some(photons as u64),
+        radius,
+        seed,
+    })
+}
+
 fn russian_roulette(params: &ParamSet) -> Result<RussianRoulette, SceneError> {
     let threshold = params.get("rrthreshold").is_some() || params.get("rrprobability").is_some();
     let mode = params.string("russianroulette")?;

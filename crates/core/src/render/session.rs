@@ -1,0 +1,428 @@
+//! [`RenderSession`]: one render's thread pool, integrator and film, continued wave after
+//! wave of sample indices.
+
+use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{
+    doubling_waves, is_cancelled, tiles, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats, Tile,
+};
+use crate::film::{Film, PixelStats, Splat};
+use crate::integrator::{Integrator, TraceStats};
+use crate::math::{UVec2, Vec2};
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+
+/// A render in progress: built once (thread pool, integrator, tiles), then advanced by
+/// consecutive ranges of sample indices, each continuing the film where the last stopped.
+pub struct RenderSession<'s> {
+    scene: &'s Scene,
+    integrator: Integrator,
+    pool: rayon::ThreadPool,
+    threads: usize,
+    tile_size: u32,
+    tiles: Vec<Tile>,
+    film: Film,
+    /// The first sample index of the next range; `None` until something is rendered.
+    next_sample: Option<u32>,
+}
+
+/// One tile's share of a wave.
+struct TileResult {
+    pixels: Vec<PixelStats>,
+    splats: Vec<Splat>,
+    /// `splats[starts[i]..starts[i + 1]]` came from the tile's `i`-th pixel.
+    starts: Vec<usize>,
+    trace: TraceStats,
+    nonfinite: u64,
+}
+
+impl<'s> RenderSession<'s> {
+    /// A session with an empty film.
+    pub fn new(scene: &'s Scene, opts: &RenderOptions) -> Result<Self, RenderError> {
+        let film = Film::new(scene.film.width, scene.film.height);
+        Self::build(scene, opts, film, None)
+    }
+
+    /// A session continuing `film` (e.g. read from a checkpoint), whose next range must
+    /// start at `next_sample`.
+    pub fn with_film(
+        scene: &'s Scene,
+        opts: &RenderOptions,
+        film: Film,
+        next_sample: u32,
+    ) -> Result<Self, RenderError> {
+        let expected = (scene.film.width, scene.film.height);
+        if (film.width(), film.height()) != expected {
+            return Err(RenderError::FilmSize {
+                expected,
+                found: (film.width(), film.height()),
+            });
+        }
+        Self::build(scene, opts, film, Some(next_sample))
+    }
+
+    fn build(
+        scene: &'s Scene,
+        opts: &RenderOptions,
+        film: Film,
+        next_sample: Option<u32>,
+    ) -> Result<Self, RenderError> {
+        let threads = opts.threads.unwrap_or_else(rayon::current_num_threads).max(1);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|source| RenderError::ThreadPool { threads, source })?;
+        let integrator = Integrator::new(scene)?;
+        let tile_size = opts.tile_size.max(1);
+        Ok(Self {
+            scene,
+            integrator,
+            pool,
+            threads,
+            tile_size,
+            tiles: tiles(scene.film.width, scene.film.height, tile_size),
+            film,
+            next_sample,
+        })
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &'s Scene {
+        self.scene
+    }
+
+    /// The integrator, built once for the session.
+    #[must_use]
+    pub fn integrator(&self) -> &Integrator {
+        &self.integrator
+    }
+
+    /// The worker threads (for drivers that do not render per camera sample: SPPM, MLT).
+    #[must_use]
+    pub fn pool(&self) -> &rayon::ThreadPool {
+        &self.pool
+    }
+
+    /// Number of worker threads.
+    #[must_use]
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// The tiles, in the order splats are added (row-major grid).
+    #[must_use]
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The film so far: every completed wave, nothing of a cancelled one.
+    #[must_use]
+    pub fn film(&self) -> &Film {
+        &self.film
+    }
+
+    /// The film, ending the session.
+    #[must_use]
+    pub fn into_film(self) -> Film {
+        self.film
+    }
+
+    /// The film, for drivers that fill it themselves (SPPM, MLT; their integrator modules
+    /// render through [`Self::pool`], check [`RenderObserver::cancel_flag`] between their
+    /// work units, report [`RenderObserver::progress`], then call [`Self::mark_rendered`]).
+    pub fn film_mut(&mut self) -> &mut Film {
+        &mut self.film
+    }
+
+    /// Record that a driver rendered sample indices (iterations, passes) `range` into the
+    /// film itself: the film's sample count grows and the next range must follow it.
+    pub fn mark_rendered(&mut self, range: Range<u32>) -> Result<(), RenderError> {
+        if let Some(next) = self.next_sample {
+            if range.start != next {
+                return Err(RenderError::SampleRange { next, found: range });
+            }
+        }
+        self.film
+            .add_samples_per_pixel(u64::from(range.end.saturating_sub(range.start)));
+        self.next_sample = Some(range.end.max(range.start));
+        Ok(())
+    }
+
+    /// The first sample index of the next range (`None` before the first).
+    #[must_use]
+    pub fn next_sample(&self) -> Option<u32> {
+        self.next_sample
+    }
+
+    /// Render samples `range` of every pixel, continuing the film, and return a copy of the
+    /// film with this call's figures. See [`Self::advance`].
+    pub fn render_samples(
+        &mut self,
+        range: Range<u32>,
+        observer: &dyn RenderObserver,
+    ) -> Result<RenderOutput, RenderError> {
+        let stats = self.advance(range, observer)?;
+        Ok(RenderOutput {
+            film: self.film.clone(),
+            stats,
+        })
+    }
+
+    /// Render samples `range` of every pixel, continuing the film: each pixel's accumulator
+    /// picks up where the last range left it, so consecutive ranges give the same bytes as
+    /// one range covering them. `range` must start where the previous one ended.
+    ///
+    /// Work units are tiles of a wave; a wave is the whole range, or one sample index when
+    /// the integrator splats. When the observer's cancel flag is set, the unfinished wave is
+    /// dropped and [`RenderError::Cancelled`] returned; [`Self::film`] then holds the
+    /// completed waves, and the render can be continued from [`Self::next_sample`].
+    pub fn advance(&mut self, range: Range<u32>, observer: &dyn RenderObserver) -> Result<RenderStats, RenderError> {
+        if let Some(next) = self.next_sample {
+            if range.start != next {
+                return Err(RenderError::SampleRange { next, found: range });
+            }
+        }
+        let start = Instant::now();
+        let pixels = u64::from(self.film.width()) * u64::from(self.film.height());
+        let total = pixels * u64::from(range.end.saturating_sub(range.start));
+        let done = AtomicU64::new(0);
+        let mut stats = RenderStats {
+            threads: self.threads,
+            ..Default::default()
+        };
+        let wave = if self.integrator.splats() {
+            1
+        } else {
+            range.end.saturating_sub(range.start).max(1)
+        };
+        let mut s = range.start;
+        while s < range.end {
+            let end = s.saturating_add(wave).min(range.end);
+            self.wave(s..end, observer, &done, total, &mut stats)?;
+            self.next_sample = Some(end);
+            s = end;
+        }
+        stats.elapsed = start.elapsed();
+        stats.paths = total;
+        Ok(stats)
+    }
+
+    /// Render `range` in waves of doubling sample counts ([`doubling_waves`]), calling
+    /// `after_wave(film, wave figures)` after each (convergence studies, progressive
+    /// output). The film ends bit-identical to one pass; the figures returned are summed.
+    pub fn render_in_waves(
+        &mut self,
+        range: Range<u32>,
+        observer: &dyn RenderObserver,
+        mut after_wave: impl FnMut(&Film, &RenderStats),
+    ) -> Result<RenderStats, RenderError> {
+        let mut total = RenderStats {
+            threads: self.threads,
+            ..Default::default()
+        };
+        for wave in doubling_waves(range) {
+            let s = self.advance(wave, observer)?;
+            after_wave(&self.film, &s);
+            total.elapsed += s.elapsed;
+            total.paths += s.paths;
+            total.trace += s.trace;
+            total.nonfinite_samples += s.nonfinite_samples;
+            total.dropped_splats += s.dropped_splats;
+        }
+        Ok(total)
+    }
+
+    /// One wave: every tile renders `samples`, then the results are committed in tile
+    /// order (pixels) and row-major pixel order (splats), or dropped if cancelled.
+    fn wave(
+        &mut self,
+        samples: Range<u32>,
+        observer: &dyn RenderObserver,
+        done: &AtomicU64,
+        total: u64,
+        stats: &mut RenderStats,
+    ) -> Result<(), RenderError> {
+        let cancelled = || is_cancelled(observer);
+        if cancelled() {
+            return Err(RenderError::Cancelled {
+                samples_done: self.film.samples_per_pixel(),
+            });
+        }
+        let n = u64::from(samples.end - samples.start);
+        let (scene, integrator, film) = (self.scene, &self.integrator, &self.film);
+        let results: Vec<Option<TileResult>> = self.pool.install(|| {
+            self.tiles
+                .par_iter()
+                .map(|tile| {
+                    if cancelled() {
+                        return None;
+                    }
+                    let pixels = (0..tile.pixel_count() as usize)
+                        .map(|i| {
+                            let (x, y) = tile.pixel_at(i);
+                            *film.pixel(x, y)
+                        })
+                        .collect();
+                    let r = render_tile(scene, integrator, tile, samples.clone(), pixels);
+                    observer.tile_finished(tile, &r.pixels);
+                    let work = tile.pixel_count() * n;
+                    observer.progress(done.fetch_add(work, Ordering::Relaxed) + work, total);
+                    Some(r)
+                })
+                .collect()
+        });
+        let Some(results) = results.into_iter().collect::<Option<Vec<_>>>() else {
+            return Err(RenderError::Cancelled {
+                samples_done: self.film.samples_per_pixel(),
+            });
+        };
+        for (tile, r) in self.tiles.iter().zip(&results) {
+            for (i, p) in r.pixels.iter().enumerate() {
+                let (x, y) = tile.pixel_at(i);
+                *self.film.pixel_mut(x, y) = *p;
+            }
+            stats.trace += r.trace;
+            stats.nonfinite_samples += r.nonfinite;
+        }
+        stats.dropped_splats += commit_splats(&mut self.film, &self.tiles, self.tile_size, &results);
+        self.film.add_samples_per_pixel(n);
+        Ok(())
+    }
+}
+
+/// Add a wave's splats to the film in row-major order of the pixel whose sample made them
+/// (then in the order made), so the sums depend neither on the thread count nor on the tile
+/// size. `tiles` are [`tiles`]`(w, h, tile_size)`, `results` theirs in the same order.
+/// Returns the number dropped (outside the image or not finite).
+fn commit_splats(film: &mut Film, tiles: &[Tile], tile_size: u32, results: &[TileResult]) -> u64 {
+    if results.iter().all(|r| r.splats.is_empty()) {
+        return 0;
+    }
+    let (w, h) = (film.width(), film.height());
+    let tiles_x = w.div_ceil(tile_size);
+    let mut dropped = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let t = ((y / tile_size) * tiles_x + x / tile_size) as usize;
+            let (tile, r) = (&tiles[t], &results[t]);
+            let i = ((y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0)) as usize;
+            for s in &r.splats[r.starts[i]..r.starts[i + 1]] {
+                if !film.add_splat(s) {
+                    dropped += 1;
+                }
+            }
+        }
+    }
+    dropped
+}
+
+/// Continue the tile's accumulators (`pixels`, in tile order) with the given samples.
+fn render_tile(
+    scene: &Scene,
+    integrator: &Integrator,
+    tile: &Tile,
+    samples: Range<u32>,
+    mut pixels: Vec<PixelStats>,
+) -> TileResult {
+    let mut sampler = Sampler::new(&scene.sampler);
+    let mut trace = TraceStats::default();
+    let mut nonfinite = 0;
+    let mut splats = Vec::new();
+    let mut starts = Vec::with_capacity(pixels.len() + 1);
+    for (i, acc) in pixels.iter_mut().enumerate() {
+        starts.push(splats.len());
+        let (x, y) = tile.pixel_at(i);
+        let pixel = UVec2::new(x, y);
+        for s in samples.clone() {
+            sampler.start_pixel_sample(pixel, s);
+            // Offset drawn from the filter: the sample lands at centre + offset with a
+            // weight of about one, so nothing is splatted into neighbouring pixels.
+            let fs = scene.filter.sample(sampler.get_pixel_2d());
+            let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
+            let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+            let l = integrator.li(scene, ray, &mut sampler, &mut trace, &mut splats);
+            if l.is_finite() && fs.weight.is_finite() {
+                acc.add(l, fs.weight);
+            } else {
+                nonfinite += 1;
+            }
+        }
+    }
+    starts.push(splats.len());
+    TileResult {
+        pixels,
+        splats,
+        starts,
+        trace,
+        nonfinite,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+
+    /// Splats made by each pixel's sample, deterministic in (pixel, k) and landing far from
+    /// the pixel, with magnitudes spread so that the order of additions shows in the bits.
+    fn splats_of(x: u32, y: u32, w: u32, h: u32) -> Vec<Splat> {
+        (0..3)
+            .map(|k| {
+                let v = ((x * 31 + y * 17 + k * 7) % 13) as f32;
+                Splat {
+                    p_film: Vec2::new(((x * 7 + k) % w) as f32 + 0.25, ((y * 5 + k) % h) as f32 + 0.75),
+                    l: Rgb::new(1e-3 * v, 10.0f32.powi(v as i32 % 7), 0.1 + v),
+                }
+            })
+            .collect()
+    }
+
+    fn splat_film(w: u32, h: u32, tile_size: u32) -> Film {
+        let tile_list = tiles(w, h, tile_size);
+        let results: Vec<TileResult> = tile_list
+            .iter()
+            .map(|t| {
+                let (mut splats, mut starts) = (Vec::new(), Vec::new());
+                for i in 0..t.pixel_count() as usize {
+                    starts.push(splats.len());
+                    let (x, y) = t.pixel_at(i);
+                    splats.extend(splats_of(x, y, w, h));
+                }
+                starts.push(splats.len());
+                TileResult {
+                    pixels: vec![PixelStats::default(); t.pixel_count() as usize],
+                    splats,
+                    starts,
+                    trace: TraceStats::default(),
+                    nonfinite: 0,
+                }
+            })
+            .collect();
+        let mut film = Film::new(w, h);
+        assert_eq!(commit_splats(&mut film, &tile_list, tile_size, &results), 0);
+        film
+    }
+
+    #[test]
+    fn splats_are_added_in_row_major_pixel_order_whatever_the_tile_size() {
+        let (w, h) = (11, 7);
+        let mut reference = Film::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                for s in splats_of(x, y, w, h) {
+                    assert!(reference.add_splat(&s));
+                }
+            }
+        }
+        for ts in [1, 3, 4, 16] {
+            let film = splat_film(w, h, ts);
+            let bits = |f: &Film| f.splat_sums().iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&film), bits(&reference), "tile size {ts}");
+        }
+    }
+}
