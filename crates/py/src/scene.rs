@@ -234,6 +234,8 @@ impl PyScene {
         match self.desc.integrator.kind {
             IntegratorKind::Path => "path",
             IntegratorKind::Direct => "direct",
+            IntegratorKind::LightPath => "lightpath",
+            IntegratorKind::Sppm => "sppm",
         }
     }
 
