@@ -8,8 +8,8 @@ use clap::{Args, ValueEnum};
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
 use mcrender_core::scene::{MAX_PIXELS, MAX_RESOLUTION};
 use mcrender_scene::limits::LoadLimits;
-use mcrender_scene::pbrt::{load_file_with, load_str, LoadOptions, LoadedScene};
-use mcrender_scene::quoted;
+use mcrender_scene::pbrt::{load_str, LoadedScene};
+use mcrender_scene::{load_with, quoted, LoadOptions};
 
 use crate::builtin;
 
@@ -51,8 +51,11 @@ pub enum SamplerChoice {
 /// The scene and what to override in it.
 #[derive(Args, Debug, Default, Clone)]
 pub struct SceneArgs {
-    /// pbrt-v4 scene file; the built-in Cornell box when omitted.
+    /// Scene file (pbrt-v4, or Mitsuba 3 `.xml`); the built-in Cornell box when omitted.
     pub scene: Option<PathBuf>,
+    /// `NAME=VALUE`: set a Mitsuba scene's `$NAME` parameter (overrides its `<default>`).
+    #[arg(short = 'D', value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
     /// Samples per pixel.
     #[arg(long)]
     pub spp: Option<u32>,
@@ -114,6 +117,14 @@ pub fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+/// Parse `NAME=VALUE`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((n, v)) if !n.is_empty() => Ok((n.to_string(), v.to_string())),
+        _ => Err(format!("expected NAME=VALUE, found \"{s}\"")),
+    }
+}
+
 /// Parse a direct-lighting strategy name.
 pub fn parse_strategy(s: &str) -> Result<DirectStrategy, String> {
     DirectStrategy::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
@@ -128,12 +139,12 @@ impl SceneArgs {
         let (loaded, stem) = match &self.scene {
             Some(path) => {
                 let options = LoadOptions {
+                    defines: self.define.clone(),
                     limits: LoadLimits {
                         max_memory: self.memory_limit(),
                     },
-                    ..LoadOptions::default()
                 };
-                let loaded = load_file_with(path, &options).map_err(anyhow::Error::new)?;
+                let loaded = load_with(path, &options).map_err(anyhow::Error::new)?;
                 let stem = path
                     .file_stem()
                     .map_or_else(|| "render".to_string(), |s| s.to_string_lossy().into_owned());

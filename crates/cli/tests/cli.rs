@@ -179,3 +179,61 @@ fn sampler_override_changes_the_samples_but_not_the_picture() {
     let o = mcrender(&["render", &cornell(), "--sampler", "halton", "-q"], dir.path());
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn malformed_mitsuba_scene_is_rejected_with_location_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text, at) in [
+        (
+            "bad.xml",
+            "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n</scene>\n",
+            "bad.xml:3:",
+        ),
+        (
+            "plugin.xml",
+            "<scene version=\"3.0.0\">\n  <bsdf type=\"glitter\"/>\n</scene>\n",
+            "plugin.xml:2:3",
+        ),
+        (
+            "ref.xml",
+            "<scene version=\"3.0.0\">\n  <shape type=\"sphere\"><ref id=\"gone\"/></shape>\n</scene>\n",
+            "ref.xml:2:",
+        ),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let o = mcrender(&["render", path.to_str().unwrap(), "-o", "out.png", "-q"], dir.path());
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let msg = stderr(&o);
+        assert!(msg.contains(at), "{name}: message lacks {at}: {msg}");
+        assert!(!msg.contains("panicked"), "{msg}");
+        assert!(!dir.path().join("out.png").exists());
+    }
+}
+
+#[test]
+fn mitsuba_scene_renders_with_a_define() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0">
+  <default name="spp" value="1"/>
+  <sensor type="perspective"><float name="fov" value="45"/>
+    <transform name="to_world"><lookat origin="0,0,-4" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+  </sensor>
+  <emitter type="constant"/>
+  <shape type="sphere"/>
+</scene>"#,
+    )
+    .unwrap();
+    let o = mcrender(
+        &["render", path.to_str().unwrap(), "-D", "spp=3", "-o", "out.exr"],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("3 spp"), "{}", stderr(&o));
+    assert!(dir.path().join("out.exr").exists());
+}

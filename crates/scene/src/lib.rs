@@ -3,6 +3,9 @@
 //! image writers and readers (PNG, EXR).
 //!
 //! * [`pbrt`]: the pbrt-v4 scene format ([`pbrt::load_file`], [`pbrt::load_str`]);
+//! * [`load`]: the front door, any format by extension;
+//! * [`mitsuba`]: Mitsuba 3 XML scenes ([`mitsuba::load_file`]);
+//! * [`obj`]: Wavefront OBJ meshes;
 //! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
 //!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
@@ -11,10 +14,14 @@ mod error;
 pub mod fuzzing;
 pub mod image_io;
 pub mod limits;
+mod load;
+pub mod mitsuba;
+pub mod obj;
 pub mod pbrt;
 pub mod ply;
 pub mod source;
 
 pub use error::{escape_control, io_error_text, quoted, tidy_message, Location, SceneError, SceneErrorKind};
 pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, write_images, ImageError, ImageRgb};
-pub use pbrt::{load_file, load_file_with, load_str, load_str_with, LoadOptions, LoadedScene};
+pub use load::{load, load_with, LoadOptions, SceneFormat};
+pub use pbrt::{load_file, load_file_with, load_str, load_str_with, LoadedScene};

@@ -5,10 +5,12 @@
 //! arrive already decoded to linear RGB) and what materials evaluate at render time.
 //!
 //! Classes: `constant`, `scale`, `mix`, `checkerboard` (2-D, box filtered), `imagemap`
-//! (MIP-mapped; point, bilinear, trilinear or EWA lookups; see [`mipmap`]). Mappings: uv,
+//! (MIP-mapped; point, bilinear, trilinear or EWA lookups; see [`mipmap`]), `bitmap`
+//! (Mitsuba's: full resolution, nearest or bilinear). Mappings: uv,
 //! spherical, cylindrical, planar ([`TextureMapping`]).
 
 mod alpha;
+mod bitmap;
 mod checkerboard;
 mod context;
 mod image;
@@ -24,6 +26,7 @@ use std::ops::{Add, Mul};
 use std::sync::Arc;
 
 pub use alpha::{alpha_keeps, effective_alpha};
+pub use bitmap::{BitmapFilter, BitmapTexture, BitmapWrap};
 pub use checkerboard::{checkerboard_weight, CheckerboardTexture};
 pub use context::TextureContext;
 pub use image::ImageTexture;
@@ -69,6 +72,8 @@ pub enum Texture<T: TextureValue> {
     Checkerboard(Arc<CheckerboardTexture<T>>),
     /// A MIP-mapped image.
     Image(Arc<ImageTexture>),
+    /// An unfiltered full-resolution image (Mitsuba's `bitmap`).
+    Bitmap(Arc<BitmapTexture>),
 }
 
 /// A texture of floats (roughness, mix amounts, ...).
@@ -92,6 +97,7 @@ impl<T: TextureValue> Texture<T> {
             Self::Mix(t) => t.evaluate(ctx),
             Self::Checkerboard(t) => t.evaluate(ctx),
             Self::Image(t) => T::from_texel(t.evaluate_rgb(ctx)),
+            Self::Bitmap(t) => T::from_texel(t.evaluate_rgb(ctx)),
         }
     }
 

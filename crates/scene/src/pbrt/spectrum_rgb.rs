@@ -127,7 +127,7 @@ fn lobe(lambda: f64, mu: f64, sigma_below: f64, sigma_above: f64) -> f64 {
 }
 
 /// CIE 1931 colour matching functions at `lambda` nm (Wyman et al. 2013, multi-lobe fit).
-fn cie_xyz(lambda: f64) -> [f64; 3] {
+pub(crate) fn cie_xyz(lambda: f64) -> [f64; 3] {
     [
         1.056 * lobe(lambda, 599.8, 37.9, 31.0) + 0.362 * lobe(lambda, 442.0, 16.0, 26.7)
             - 0.065 * lobe(lambda, 501.1, 20.4, 26.2),
@@ -150,7 +150,7 @@ fn integrate_xyz(s: impl Fn(f64) -> f64) -> [f64; 3] {
 }
 
 /// CIE XYZ to linear sRGB (IEC 61966-2-1, D65 white).
-fn xyz_to_linear_srgb([x, y, z]: [f64; 3]) -> [f64; 3] {
+pub(crate) fn xyz_to_linear_srgb([x, y, z]: [f64; 3]) -> [f64; 3] {
     [
         3.240_454_2 * x - 1.537_138_5 * y - 0.498_531_4 * z,
         -0.969_266 * x + 1.876_010_8 * y + 0.041_556 * z,

@@ -1,0 +1,88 @@
+//! Bitterli's Cornell box in its two descriptions, `cornell-box/mitsuba/scene_v3.xml`
+//! (Mitsuba 3) and `cornell-box/scene-v4.pbrt` (pbrt-v4), render to the same image within
+//! noise: every pixel's difference is measured in units of its standard error (from both
+//! renders' own per-pixel sample variances, independent sampler), and so is the difference
+//! of the image means. A 5% brightness error fails the test (checked in the test itself).
+//! Skipped (loudly) when `MCRENDER_SCENES` is unset.
+
+use std::path::PathBuf;
+
+use mcrender_core::color::Rgb;
+use mcrender_core::render::{render, RenderOptions};
+use mcrender_core::scene::{SamplerKind, Scene};
+use mcrender_scene::load;
+
+const SIZE: u32 = 64;
+const SPP: u32 = 128;
+
+fn scenes_dir() -> Option<PathBuf> {
+    match std::env::var_os("MCRENDER_SCENES") {
+        Some(d) => Some(PathBuf::from(d)),
+        None => {
+            eprintln!("SKIPPED: MCRENDER_SCENES is not set");
+            None
+        }
+    }
+}
+
+/// Mean image and per-pixel variance of the mean.
+fn render_file(path: &std::path::Path, seed: u64) -> (Vec<Rgb>, Vec<Rgb>) {
+    let mut desc = load(path).expect("scene loads").description;
+    desc.film.width = SIZE;
+    desc.film.height = SIZE;
+    desc.sampler.kind = SamplerKind::Independent;
+    desc.sampler.samples_per_pixel = SPP;
+    desc.sampler.seed = seed;
+    let scene = Scene::build(&desc).expect("builds");
+    let out = render(&scene, &RenderOptions::default(), &|_, _| {}).expect("renders");
+    (out.film.mean_image(), out.film.variance_image())
+}
+
+/// Fraction of pixel channels within 3.29 standard errors (two-sided p = 0.001), and the
+/// largest z of the per-channel image means.
+fn agreement(a: &(Vec<Rgb>, Vec<Rgb>), b: &(Vec<Rgb>, Vec<Rgb>), scale_a: f32) -> (f64, f64) {
+    let mut within = 0usize;
+    let mut sums = [[0.0f64; 4]; 3];
+    for i in 0..a.0.len() {
+        let (ma, va, mb, vb) = (
+            a.0[i].to_array(),
+            a.1[i].to_array(),
+            b.0[i].to_array(),
+            b.1[i].to_array(),
+        );
+        for k in 0..3 {
+            let (x, y) = (f64::from(ma[k] * scale_a), f64::from(mb[k]));
+            let v = f64::from(va[k] * scale_a * scale_a) + f64::from(vb[k]);
+            let z = (x - y).abs() / v.max(1e-12).sqrt();
+            within += usize::from(z < 3.29);
+            sums[k][0] += x;
+            sums[k][1] += y;
+            sums[k][2] += f64::from(va[k] * scale_a * scale_a);
+            sums[k][3] += f64::from(vb[k]);
+        }
+    }
+    let max_mean_z = sums
+        .iter()
+        .map(|s| (s[0] - s[1]).abs() / (s[2] + s[3]).sqrt())
+        .fold(0.0, f64::max);
+    (within as f64 / (3 * a.0.len()) as f64, max_mean_z)
+}
+
+#[test]
+fn mitsuba_and_pbrt_cornell_boxes_agree_within_noise() {
+    let Some(dir) = scenes_dir() else { return };
+    let m = render_file(&dir.join("cornell-box/mitsuba/scene_v3.xml"), 1);
+    let p = render_file(&dir.join("cornell-box/scene-v4.pbrt"), 2);
+    let (fraction, mean_z) = agreement(&m, &p, 1.0);
+    eprintln!(
+        "Cornell box, Mitsuba vs pbrt description: {:.3}% of channels within 3.29 sigma, image-mean z {mean_z:.2}",
+        fraction * 100.0
+    );
+    // Expected 99.9% for identical images; sample variances at 128 spp are themselves noisy.
+    assert!(fraction > 0.99, "only {:.3}% of pixel channels agree", fraction * 100.0);
+    assert!(mean_z < 4.0, "image means differ by {mean_z:.2} standard errors");
+    // The test can fail: 5% brighter is far outside the noise.
+    let (_, scaled_z) = agreement(&m, &p, 1.05);
+    eprintln!("the same with the Mitsuba render 5% brighter: image-mean z {scaled_z:.2}");
+    assert!(scaled_z > 4.0, "a 5% brightness error went unnoticed (z {scaled_z:.2})");
+}

@@ -1,0 +1,67 @@
+//! The front door: [`load`] reads any supported scene format, chosen by the file's
+//! extension (`.pbrt` and anything unknown: pbrt-v4; `.xml`: Mitsuba).
+
+use std::path::Path;
+
+use crate::error::SceneError;
+use crate::limits::LoadLimits;
+use crate::pbrt::LoadedScene;
+
+/// Options of [`load_with`].
+#[derive(Clone, Debug, Default)]
+pub struct LoadOptions {
+    /// `name=value` overrides of a Mitsuba scene's `<default>`s (`-D` on the command line).
+    pub defines: Vec<(String, String)>,
+    /// Memory limit for images and meshes (honoured by the pbrt-v4 loader).
+    pub limits: LoadLimits,
+}
+
+/// The scene formats [`load`] knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneFormat {
+    /// pbrt-v4.
+    Pbrt,
+    /// Mitsuba 3 XML.
+    Mitsuba,
+}
+
+impl SceneFormat {
+    /// The format of `path`, by extension.
+    #[must_use]
+    pub fn of(path: &Path) -> Self {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("xml") => Self::Mitsuba,
+            _ => Self::Pbrt,
+        }
+    }
+}
+
+/// Load a scene file of any supported format.
+///
+/// # Errors
+/// As the format's loader: the display reads `file:line:col: message`.
+pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
+    load_with(path, &LoadOptions::default())
+}
+
+/// [`load`] with options.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+    match SceneFormat::of(path) {
+        SceneFormat::Pbrt => crate::pbrt::load_file_with(
+            path,
+            &crate::pbrt::LoadOptions {
+                limits: options.limits,
+                ..crate::pbrt::LoadOptions::default()
+            },
+        ),
+        SceneFormat::Mitsuba => crate::mitsuba::load_file(path, &options.defines),
+    }
+}

@@ -1,0 +1,464 @@
+//! From the [`Element`] tree to a [`SceneDescription`]: the scene's top-level plugins in
+//! document order, named objects (`id`) for `<ref>`, and the sensor, film, sampler and
+//! integrator settings. Shapes, BSDFs, emitters and textures live in their own modules as
+//! further `impl Builder` blocks.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use mcrender_core::color::Rgb;
+use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
+use mcrender_core::scene::{
+    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MaterialDesc, MaterialId,
+    SamplerDesc, SamplerKind, SceneDescription,
+};
+use mcrender_core::texture::FloatTexture;
+
+use super::props::Props;
+use super::xml::{Element, Reader};
+use crate::error::SceneError;
+use crate::pbrt::LoadedScene;
+
+/// A decoded image: width, height, texels.
+pub type ImageEntry = (u32, u32, Arc<Vec<Rgb>>);
+
+/// A resolved BSDF: the material and the cut-out of a `mask` around it.
+#[derive(Clone, Debug)]
+pub struct Surface {
+    /// The material.
+    pub material: MaterialId,
+    /// Opacity from `mask` (`None`: opaque).
+    pub alpha: Option<FloatTexture>,
+}
+
+/// Something an `id` names.
+#[derive(Clone, Debug)]
+pub enum Named {
+    /// A BSDF.
+    Bsdf(Surface),
+    /// A texture (built where it is used, as float or RGB).
+    Texture(Box<Element>),
+    /// A `shapegroup`: index into [`SceneDescription::objects`].
+    ShapeGroup(u32),
+    /// Anything else (shapes, emitters, ...), remembered only so that `<ref>`s to it say
+    /// what it is.
+    Other(String),
+}
+
+/// Builds one scene.
+pub struct Builder {
+    /// The reader (for file resolution).
+    pub reader: Reader,
+    /// Directory of the top-level file.
+    pub dir: PathBuf,
+    /// The scene so far.
+    pub desc: SceneDescription,
+    /// `id` -> object.
+    pub named: HashMap<String, Named>,
+    /// Warnings, `file:line:col: warning: ...`.
+    pub warnings: Vec<String>,
+    /// Decoded images (width, height, texels), by (path, raw).
+    pub images: HashMap<(PathBuf, bool), ImageEntry>,
+    /// The default material (`diffuse`, reflectance 0.5), made on first use.
+    default_material: Option<MaterialId>,
+}
+
+impl Builder {
+    /// A builder for a scene read by `reader` from a file in `dir`.
+    #[must_use]
+    pub fn new(reader: Reader, dir: &Path) -> Self {
+        let desc = SceneDescription {
+            camera: CameraDesc::default(),
+            film: FilmDesc {
+                width: 768,
+                height: 576,
+            },
+            filter: gaussian_filter(0.5),
+            sampler: SamplerDesc {
+                kind: SamplerKind::Independent,
+                samples_per_pixel: 4,
+                seed: 0,
+            },
+            integrator: IntegratorDesc {
+                max_depth: UNLIMITED_DEPTH,
+                ..IntegratorDesc::default()
+            },
+            materials: Vec::new(),
+            shapes: Vec::new(),
+            lights: Vec::new(),
+            objects: Vec::new(),
+            instances: Vec::new(),
+        };
+        Self {
+            reader,
+            dir: dir.to_path_buf(),
+            desc,
+            named: HashMap::new(),
+            warnings: Vec::new(),
+            images: HashMap::new(),
+            default_material: None,
+        }
+    }
+
+    /// Build the scene from its `<scene>` element.
+    ///
+    /// # Errors
+    /// The first invalid or unsupported element.
+    pub fn build(mut self, scene: &Element) -> Result<LoadedScene, SceneError> {
+        let mut sensors = 0;
+        for el in &scene.children {
+            match el.tag.as_str() {
+                "sensor" => {
+                    sensors += 1;
+                    if sensors > 1 {
+                        self.warnings.push(format!(
+                            "{}: warning: more than one <sensor>; mcrender renders the first",
+                            el.loc
+                        ));
+                        continue;
+                    }
+                    self.sensor(el)?;
+                }
+                "integrator" => self.integrator(el)?,
+                "shape" => self.shape(el, None)?,
+                "emitter" => self.emitter(el)?,
+                "bsdf" => {
+                    let s = self.bsdf(el)?;
+                    self.name(el, Named::Bsdf(s));
+                }
+                "texture" => {
+                    let Some(id) = el.attr("id") else {
+                        self.warnings.push(format!(
+                            "{}: warning: a top-level <texture> without id is unused",
+                            el.loc
+                        ));
+                        continue;
+                    };
+                    self.named.insert(id.to_string(), Named::Texture(Box::new(el.clone())));
+                }
+                "medium" | "phase" | "volume" => {
+                    return Err(SceneError::unsupported(
+                        &el.loc,
+                        format!("{} (participating media)", el.describe()),
+                    ))
+                }
+                _ => {
+                    return Err(SceneError::syntax(
+                        &el.loc,
+                        format!("unexpected {} in <scene>", el.describe()),
+                    ))
+                }
+            }
+        }
+        if sensors == 0 {
+            self.warnings.push(format!(
+                "{}: warning: no <sensor>; using Mitsuba's default perspective camera",
+                scene.loc
+            ));
+        }
+        Ok(LoadedScene {
+            description: self.desc,
+            output_filename: None,
+            warnings: self.warnings,
+            // Not estimated for Mitsuba scenes yet: the memory pre-flight check counts
+            // their meshes and film but not their bitmaps.
+            image_bytes: 0,
+        })
+    }
+
+    /// Remember `el`'s `id`, if any.
+    pub fn name(&mut self, el: &Element, what: Named) {
+        if let Some(id) = el.attr("id") {
+            self.named.insert(id.to_string(), what);
+        }
+    }
+
+    /// The object a `<ref id>` names.
+    pub fn lookup(&self, r: &Element) -> Result<&Named, SceneError> {
+        let id = r.required("id")?;
+        self.named
+            .get(id)
+            .ok_or_else(|| SceneError::invalid(&r.loc, format!("<ref id=\"{id}\"> names nothing defined before it")))
+    }
+
+    /// Add a material.
+    pub fn add_material(&mut self, m: MaterialDesc) -> MaterialId {
+        self.desc.materials.push(m);
+        (self.desc.materials.len() - 1) as MaterialId
+    }
+
+    /// Mitsuba's default BSDF: diffuse with reflectance 0.5.
+    pub fn default_surface(&mut self) -> Surface {
+        let material = match self.default_material {
+            Some(m) => m,
+            None => {
+                let m = self.add_material(MaterialDesc::Diffuse {
+                    reflectance: Rgb::splat(0.5).into(),
+                });
+                self.default_material = Some(m);
+                m
+            }
+        };
+        Surface { material, alpha: None }
+    }
+
+    /// Resolve a file name against `<path>` directories and the scene's directory.
+    #[must_use]
+    pub fn resolve(&self, file: &str) -> PathBuf {
+        self.reader.resolve_from(file, &self.dir)
+    }
+
+    /// Keep the unused-property warnings of `p`.
+    pub fn finish(&mut self, p: &Props) {
+        self.warnings.extend(p.unused_warnings());
+    }
+
+    /// A plugin type that mcrender does not render.
+    pub fn unsupported(el: &Element, why: &str) -> SceneError {
+        SceneError::unsupported(&el.loc, format!("{} is not supported{why}", el.describe()))
+    }
+
+    /// `<sensor>`: perspective or thin-lens camera, with its film and sampler.
+    fn sensor(&mut self, el: &Element) -> Result<(), SceneError> {
+        let kind = el.required("type")?;
+        if kind != "perspective" && kind != "thinlens" {
+            return Err(Self::unsupported(el, " (cameras: perspective, thinlens)"));
+        }
+        let mut p = Props::new(el);
+        for film in p.nested("film") {
+            if film.tag == "film" {
+                self.film(film)?;
+            }
+        }
+        for s in p.nested("sampler") {
+            if s.tag == "sampler" {
+                self.sampler(s)?;
+            }
+        }
+        let to_world = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
+        if p.has("focal_length") {
+            let e = p.get("focal_length").expect("checked");
+            return Err(SceneError::unsupported(
+                &e.loc,
+                "\"focal_length\" (give \"fov\" instead)",
+            ));
+        }
+        // Mitsuba's default is a 50 mm lens on 35 mm film, measured along the diagonal.
+        let (fov, axis) = match p.get("fov") {
+            Some(e) => (super::props::scalar(e, &["float"])?, None),
+            None => (
+                2.0 * (43.266_6_f32 / 100.0).atan().to_degrees(),
+                Some("diagonal".to_string()),
+            ),
+        };
+        let axis = match axis {
+            Some(a) => a,
+            None => p.string("fov_axis")?.map_or_else(|| "x".to_string(), |(a, _)| a),
+        };
+        let (w, h) = (self.desc.film.width as f32, self.desc.film.height as f32);
+        let half = (fov.to_radians() / 2.0).tan();
+        let tan_x = match axis.as_str() {
+            "x" => half,
+            "y" => half * w / h,
+            "diagonal" => half * w / (w * w + h * h).sqrt(),
+            "smaller" if w <= h => half,
+            "smaller" => half * w / h,
+            "larger" if w >= h => half,
+            "larger" => half * w / h,
+            other => {
+                return Err(SceneError::syntax(
+                    &el.loc,
+                    format!("unknown fov_axis \"{other}\" (expected x, y, diagonal, smaller or larger)"),
+                ))
+            }
+        };
+        let tan_short = if w <= h { tan_x } else { tan_x * h / w };
+        // Mitsuba's image x runs along camera -x ("left"), pbrt's along +x: mirror x.
+        let m = to_world * Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+        let world_from_camera =
+            Transform::new(m).ok_or_else(|| SceneError::invalid(&el.loc, "the sensor's to_world is singular"))?;
+        let (lens_radius, focal_distance) = if kind == "thinlens" {
+            (p.float("aperture_radius", 0.03)?, p.float("focus_distance", 0.0)?)
+        } else {
+            (0.0, 1e6)
+        };
+        for silent in ["near_clip", "far_clip"] {
+            let _ = p.get(silent);
+        }
+        self.desc.camera = CameraDesc {
+            world_from_camera,
+            fov_degrees: 2.0 * tan_short.atan().to_degrees(),
+            lens_radius,
+            focal_distance,
+            screen_window: None,
+        };
+        self.finish(&p);
+        Ok(())
+    }
+
+    /// `<film>`: size and reconstruction filter.
+    fn film(&mut self, el: &Element) -> Result<(), SceneError> {
+        let mut p = Props::new(el);
+        let w = p.int("width", 768)?;
+        let h = p.int("height", 576)?;
+        if !(1..=1 << 16).contains(&w) || !(1..=1 << 16).contains(&h) {
+            return Err(SceneError::invalid(&el.loc, format!("film size {w}x{h} out of range")));
+        }
+        self.desc.film = FilmDesc {
+            width: w as u32,
+            height: h as u32,
+        };
+        for silent in ["pixel_format", "component_format", "file_format", "rfilter"] {
+            let _ = p.get(silent);
+        }
+        for f in p.nested("rfilter") {
+            if f.tag != "rfilter" {
+                continue;
+            }
+            let mut fp = Props::new(f);
+            self.desc.filter = match f.required("type")? {
+                "box" => FilterDesc::Box {
+                    radius: Vec2::splat(0.5),
+                },
+                "tent" => FilterDesc::Triangle {
+                    radius: Vec2::splat(fp.float("radius", 1.0)?),
+                },
+                "gaussian" => gaussian_filter(fp.float("stddev", 0.5)?),
+                _ => return Err(Self::unsupported(f, " (filters: box, tent, gaussian)")),
+            };
+            self.finish(&fp);
+        }
+        self.finish(&p);
+        Ok(())
+    }
+
+    /// `<sampler>`: kind, sample count and seed.
+    fn sampler(&mut self, el: &Element) -> Result<(), SceneError> {
+        let mut p = Props::new(el);
+        let kind = match el.required("type")? {
+            "independent" => SamplerKind::Independent,
+            "stratified" | "multijitter" | "orthogonal" | "ldsampler" | "correlated" => {
+                self.warnings.push(format!(
+                    "{}: warning: {} is rendered with mcrender's Owen-scrambled Sobol' sampler",
+                    el.loc,
+                    el.describe()
+                ));
+                let _ = p.bool("jitter", true)?;
+                SamplerKind::OwenSobol
+            }
+            _ => {
+                return Err(Self::unsupported(
+                    el,
+                    " (samplers: independent, stratified, multijitter, ldsampler)",
+                ))
+            }
+        };
+        let spp = p.int("sample_count", 4)?;
+        if !(1..=1 << 24).contains(&spp) {
+            return Err(SceneError::invalid(&el.loc, format!("sample_count {spp} out of range")));
+        }
+        let seed = p.int("seed", 0)?;
+        self.desc.sampler = SamplerDesc {
+            kind,
+            samples_per_pixel: spp as u32,
+            seed: seed as u64,
+        };
+        self.finish(&p);
+        Ok(())
+    }
+
+    /// `<integrator>`: path, direct, or `moment` around one of them (mcrender's film
+    /// always records the per-pixel variance, which is what `moment` adds).
+    fn integrator(&mut self, el: &Element) -> Result<(), SceneError> {
+        let mut p = Props::new(el);
+        match el.required("type")? {
+            "moment" => {
+                let inner: Vec<_> = p
+                    .nested("integrator")
+                    .into_iter()
+                    .filter(|e| e.tag == "integrator")
+                    .collect();
+                match inner.as_slice() {
+                    [i] => self.integrator(i)?,
+                    _ => {
+                        return Err(SceneError::syntax(
+                            &el.loc,
+                            "<integrator type=\"moment\"> needs exactly one nested integrator",
+                        ))
+                    }
+                }
+            }
+            kind @ ("path" | "volpath" | "direct") => {
+                if kind == "volpath" {
+                    self.warnings.push(format!(
+                        "{}: warning: volpath is rendered as path (no participating media)",
+                        el.loc
+                    ));
+                }
+                if p.bool("hide_emitters", false)? {
+                    return Err(SceneError::unsupported(&el.loc, "\"hide_emitters\" = true"));
+                }
+                let mut d = IntegratorDesc::default();
+                if kind == "direct" {
+                    d.kind = IntegratorKind::Direct;
+                    d.max_depth = 1;
+                    let es = p.int("emitter_samples", 1)?;
+                    let bs = p.int("bsdf_samples", 1)?;
+                    if es < 1 || es != bs {
+                        self.warnings.push(format!(
+                            "{}: warning: emitter_samples {es} and bsdf_samples {bs} are rendered as {} MIS pairs",
+                            el.loc,
+                            es.max(1)
+                        ));
+                    }
+                    d.light_samples = es.max(1) as u32;
+                    d.direct = DirectStrategy::Mis;
+                } else {
+                    // Mitsuba counts the camera ray's hit as depth 1 (max_depth 1 = emission
+                    // only); mcrender counts scattering events (0 = emission only).
+                    let depth = p.int("max_depth", -1)?;
+                    d.max_depth = match depth {
+                        -1 => UNLIMITED_DEPTH,
+                        0 => {
+                            return Err(SceneError::unsupported(
+                                &el.loc,
+                                "max_depth 0 (an image without even emission)",
+                            ))
+                        }
+                        n if n > 0 => (n - 1).min(i64::from(UNLIMITED_DEPTH)) as u32,
+                        n => {
+                            return Err(SceneError::invalid(
+                                &el.loc,
+                                format!("max_depth {n} (expected -1 or >= 1)"),
+                            ))
+                        }
+                    };
+                    // Russian roulette differs in its rule but not in the expectation.
+                    let _ = p.int("rr_depth", 5)?;
+                }
+                self.desc.integrator = d;
+            }
+            _ => {
+                return Err(Self::unsupported(
+                    el,
+                    " (integrators: path, direct, volpath as path, moment)",
+                ))
+            }
+        }
+        self.finish(&p);
+        Ok(())
+    }
+}
+
+/// Depth standing in for Mitsuba's `max_depth = -1` (paths end by Russian roulette).
+pub const UNLIMITED_DEPTH: u32 = 1024;
+
+/// Mitsuba's `gaussian` filter: standard deviation `stddev`, radius `4 stddev`, minus its
+/// value at the radius (as pbrt-v4's).
+fn gaussian_filter(stddev: f32) -> FilterDesc {
+    FilterDesc::Gaussian {
+        radius: Vec2::splat(4.0 * stddev),
+        sigma: stddev,
+    }
+}

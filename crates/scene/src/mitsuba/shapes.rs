@@ -1,0 +1,263 @@
+//! Shapes: `obj`, `ply`, `sphere`, `rectangle`, `disk`, `cube`, `shapegroup` and
+//! `instance`, each with an optional BSDF (nested or `<ref>`; Mitsuba's default is a
+//! diffuse 0.5) and area `emitter`.
+//!
+//! Texture coordinates are stored as pbrt's (`v` up), which are Mitsuba's with `v`
+//! flipped: Mitsuba flips the `v` of OBJ files (`flip_tex_coords`, default true) and
+//! puts row 0 of a bitmap at `v = 0`; pbrt keeps OBJ's `v` and puts row 0 at `v = 1`.
+//! The `bitmap` texture maps between the two (see `textures`).
+//!
+//! Normals: Mitsuba's triangles face `(p1 - p0) x (p2 - p0)` whatever the transform's
+//! handedness, spheres face outwards; `flip_normals` flips both.
+
+use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
+use mcrender_core::scene::{AreaLightDesc, GeometryDesc, InstanceDesc, ObjectDesc, ShapeDesc, TriangleMeshDesc};
+
+use super::builder::{Builder, Named, Surface};
+use super::props::Props;
+use super::xml::Element;
+use crate::error::SceneError;
+
+impl Builder {
+    /// `<shape>`; `group` collects the shapes of a `shapegroup` instead of the scene.
+    pub fn shape(&mut self, el: &Element, group: Option<&mut ObjectDesc>) -> Result<(), SceneError> {
+        let kind = el.required("type")?.to_string();
+        let mut p = Props::new(el);
+        if kind == "shapegroup" {
+            let Some(_) = el.attr("id") else {
+                return Err(SceneError::syntax(&el.loc, "a shapegroup needs an id"));
+            };
+            if group.is_some() {
+                return Err(SceneError::unsupported(&el.loc, "a shapegroup inside a shapegroup"));
+            }
+            let mut object = ObjectDesc::default();
+            for s in p.nested("shape") {
+                if s.tag == "shape" {
+                    self.shape(s, Some(&mut object))?;
+                } else {
+                    return Err(SceneError::unsupported(&s.loc, "<ref> in a shapegroup"));
+                }
+            }
+            self.desc.objects.push(object);
+            let idx = (self.desc.objects.len() - 1) as u32;
+            self.name(el, Named::ShapeGroup(idx));
+            self.finish(&p);
+            return Ok(());
+        }
+        let to_world = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
+        let transform =
+            Transform::new(to_world).ok_or_else(|| SceneError::invalid(&el.loc, "the shape's to_world is singular"))?;
+        if kind == "instance" {
+            let refs: Vec<_> = p.nested("shape").into_iter().filter(|e| e.tag == "ref").collect();
+            let [r] = refs.as_slice() else {
+                return Err(SceneError::syntax(
+                    &el.loc,
+                    "an instance needs one <ref> to a shapegroup",
+                ));
+            };
+            let Named::ShapeGroup(object) = self.lookup(r)? else {
+                return Err(SceneError::invalid(
+                    &r.loc,
+                    "an instance's <ref> must name a shapegroup",
+                ));
+            };
+            let object = *object;
+            p.use_refs();
+            if group.is_some() {
+                return Err(SceneError::unsupported(&el.loc, "an instance inside a shapegroup"));
+            }
+            self.desc.instances.push(InstanceDesc {
+                object,
+                world_from_instance: transform,
+            });
+            self.finish(&p);
+            return Ok(());
+        }
+
+        // Material: a nested <bsdf> or an unnamed <ref> to one.
+        let mut surface = None;
+        for b in p.nested("bsdf") {
+            let s = if b.tag == "bsdf" {
+                self.bsdf(b)?
+            } else {
+                match self.lookup(b)? {
+                    Named::Bsdf(s) => s.clone(),
+                    Named::Other(what) if what == "emitter" => continue,
+                    _ => return Err(SceneError::invalid(&b.loc, "a shape's <ref> must name a bsdf")),
+                }
+            };
+            if surface.is_some() {
+                return Err(SceneError::syntax(&b.loc, "a shape can have only one bsdf"));
+            }
+            surface = Some(s);
+        }
+        p.use_refs();
+        let Surface { material, alpha } = match surface {
+            Some(s) => s,
+            None => self.default_surface(),
+        };
+        let mut area_light = None;
+        for e in p.nested("emitter") {
+            if e.tag != "emitter" {
+                continue;
+            }
+            if e.required("type")? != "area" {
+                return Err(SceneError::unsupported(
+                    &e.loc,
+                    format!("{} inside a shape (only area emitters are)", e.describe()),
+                ));
+            }
+            let mut ep = Props::new(e);
+            let radiance = self.emitter_color(&mut ep, "radiance")?;
+            self.finish(&ep);
+            area_light = Some(AreaLightDesc {
+                radiance,
+                two_sided: false,
+                power: None,
+            });
+        }
+        let flip = p.bool("flip_normals", false)?;
+        let geometry = match kind.as_str() {
+            "obj" | "ply" => {
+                let (file, floc) = p
+                    .string("filename")?
+                    .ok_or_else(|| SceneError::syntax(&el.loc, format!("{} needs a \"filename\"", el.describe())))?;
+                let path = self.resolve(&file);
+                let mut mesh = if kind == "obj" {
+                    let flip_v = p.bool("flip_tex_coords", true)?;
+                    let mut m = crate::obj::read_obj_mesh(&path).map_err(|e| SceneError::io(&floc, e))?;
+                    if !flip_v {
+                        flip_uv_v(&mut m);
+                    }
+                    m
+                } else {
+                    let ply = crate::ply::read_ply(&path)
+                        .map_err(|e| SceneError::io(&floc, format!("cannot read PLY {}: {e}", path.display())))?;
+                    let mut m = TriangleMeshDesc {
+                        positions: ply.positions,
+                        indices: ply.indices,
+                        normals: ply.normals,
+                        uvs: ply.uvs,
+                    };
+                    flip_uv_v(&mut m);
+                    m
+                };
+                if p.bool("face_normals", false)? {
+                    mesh.normals = None;
+                }
+                GeometryDesc::TriangleMesh(to_world_mesh(mesh, &transform))
+            }
+            "rectangle" => GeometryDesc::TriangleMesh(to_world_mesh(rectangle(), &transform)),
+            "cube" => GeometryDesc::TriangleMesh(to_world_mesh(cube(), &transform)),
+            "sphere" => {
+                let center = p.vec3("center")?.unwrap_or(Vec3::ZERO);
+                let radius = p.float("radius", 1.0)?;
+                if radius <= 0.0 {
+                    return Err(SceneError::invalid(
+                        &el.loc,
+                        format!("sphere radius {radius} must be positive"),
+                    ));
+                }
+                let m = to_world * Mat4::from_translation(center);
+                GeometryDesc::full_sphere(radius, Transform::new(m).expect("invertible"))
+            }
+            "disk" => GeometryDesc::Disk {
+                height: 0.0,
+                radius: 1.0,
+                inner_radius: 0.0,
+                phi_max: std::f32::consts::TAU,
+                world_from_object: transform,
+            },
+            _ => {
+                return Err(Self::unsupported(
+                    el,
+                    " (shapes: obj, ply, sphere, rectangle, disk, cube, shapegroup, instance)",
+                ))
+            }
+        };
+        let shape = ShapeDesc {
+            geometry,
+            material,
+            area_light,
+            flip_normals: flip,
+            alpha,
+        };
+        match group {
+            Some(g) => {
+                if shape.area_light.is_some() {
+                    return Err(SceneError::unsupported(&el.loc, "an emitter inside a shapegroup"));
+                }
+                g.shapes.push(shape);
+            }
+            None => self.desc.shapes.push(shape),
+        }
+        self.name(el, Named::Other("shape".into()));
+        self.finish(&p);
+        Ok(())
+    }
+}
+
+/// `v -> 1 - v` for every texture coordinate.
+fn flip_uv_v(m: &mut TriangleMeshDesc) {
+    if let Some(uvs) = &mut m.uvs {
+        for uv in uvs {
+            uv.y = 1.0 - uv.y;
+        }
+    }
+}
+
+/// An object-space mesh moved to world space.
+fn to_world_mesh(mut m: TriangleMeshDesc, t: &Transform) -> TriangleMeshDesc {
+    for p in &mut m.positions {
+        *p = t.point(*p);
+    }
+    if let Some(ns) = &mut m.normals {
+        for n in ns {
+            *n = t.normal(*n).normalize_or_zero();
+        }
+    }
+    m
+}
+
+/// Mitsuba's `rectangle`: `[-1, 1]^2` in the plane `z = 0`, facing +z, Mitsuba
+/// `uv = ((x + 1) / 2, (y + 1) / 2)`.
+fn rectangle() -> TriangleMeshDesc {
+    let positions = vec![
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(-1.0, 1.0, 0.0),
+    ];
+    let uvs = positions
+        .iter()
+        .map(|p| Vec2::new((p.x + 1.0) / 2.0, 1.0 - (p.y + 1.0) / 2.0))
+        .collect();
+    TriangleMeshDesc {
+        positions,
+        indices: vec![0, 1, 2, 0, 2, 3],
+        normals: Some(vec![Vec3::Z; 4]),
+        uvs: Some(uvs),
+    }
+}
+
+/// Mitsuba's `cube`: `[-1, 1]^3`, faces outwards, flat normals.
+fn cube() -> TriangleMeshDesc {
+    let mut m = TriangleMeshDesc::default();
+    for axis in 0..3 {
+        for sign in [-1.0f32, 1.0] {
+            let n = Vec3::from_array(std::array::from_fn(|i| if i == axis { sign } else { 0.0 }));
+            let (u, v) = (n.any_orthonormal_pair().0, n.any_orthonormal_pair().1);
+            let base = m.positions.len() as u32;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                m.positions.push(n + u * a + v * b);
+            }
+            // Wind counter-clockwise seen from outside: (u x v) must point along n.
+            if u.cross(v).dot(n) > 0.0 {
+                m.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+            } else {
+                m.indices.extend([base, base + 2, base + 1, base, base + 3, base + 2]);
+            }
+        }
+    }
+    m
+}
