@@ -1,13 +1,18 @@
 //! `mcrender`: render a pbrt-v4 scene (or, with no arguments, the built-in Cornell box).
 //!
 //! Exit codes: 0 success, 2 bad input (unreadable or malformed scene, absurd parameters,
-//! unwritable output), with a message on stderr naming what is wrong.
+//! unwritable output, a checkpoint that does not match), with a message on stderr naming
+//! what is wrong; 130 / 143 a render stopped by SIGINT / SIGTERM (image so far and a
+//! checkpoint written).
 
 mod builtin;
+mod checkpoint;
 mod convert_cmd;
 mod diff_cmd;
+mod interrupt;
 mod lab;
 mod pi_cmd;
+mod progressive;
 mod render_cmd;
 mod scene_args;
 mod study;
@@ -57,6 +62,10 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The message (samples done, files written) is already on stderr.
+        Err(e) if e.downcast_ref::<interrupt::Interrupted>().is_some() => {
+            ExitCode::from(e.downcast_ref::<interrupt::Interrupted>().map_or(2, |i| i.code))
+        }
         Err(e) => {
             eprintln!("mcrender: error: {e:#}");
             ExitCode::from(2)

@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::integrator::sppm::{self, SppmSettings};
-use mcrender_core::render::{ProgressFn, RenderOptions, RenderOutput, RenderSession, RenderStats};
+use mcrender_core::render::{RenderOutput, RenderStats};
 use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_scene::image_io::{write_image, ImageRgb};
 
@@ -16,7 +16,7 @@ use crate::builtin;
 use crate::scene_args::SceneArgs;
 
 /// Options of `mcrender render`; flags override what the scene file says.
-#[derive(Args, Debug, Default)]
+#[derive(Args, Debug, Default, Clone)]
 pub struct RenderArgs {
     /// The scene and overrides.
     #[command(flatten)]
@@ -31,6 +31,9 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Checkpoint and resume.
+    #[command(flatten)]
+    pub checkpointing: crate::checkpoint::CheckpointArgs,
 }
 
 impl RenderArgs {
@@ -50,6 +53,9 @@ impl RenderArgs {
 
 /// Run the command.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let resume = crate::checkpoint::prepare_resume(args)?;
+    let args = resume.as_ref().map_or(args, |r| &r.args).clone();
+    let args = &args;
     let (loaded, stem) = args.scene.load()?;
     let mut desc = loaded.description;
     args.scene.apply(&mut desc)?;
@@ -65,21 +71,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     if desc.integrator.kind == IntegratorKind::Sppm {
+        if args.checkpointing.checkpoint.is_some() || resume.is_some() {
+            bail!("--checkpoint and --resume are not supported by the sppm integrator yet (its photon statistics are not checkpointed)");
+        }
         return render_sppm(&scene, args, &output);
     }
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
-    let bar = progress_bar(u64::from(w) * u64::from(h) * u64::from(spp), args.quiet);
-    let opts = RenderOptions {
-        threads: args.scene.threads,
-        ..Default::default()
-    };
-    let mut session = RenderSession::new(&scene, &opts)?;
-    let stats = session.advance(0..spp, &ProgressFn(|done, _| bar.set_position(done)))?;
-    let out = RenderOutput {
-        film: session.into_film(),
-        stats,
-    };
-    bar.finish_and_clear();
+    let out = crate::progressive::render(args, resume, &scene, &desc, &output)?;
 
     write_outputs(&out, &output, args.variance_output.as_deref())?;
     print_summary(&out, w, h, spp, &output);

@@ -127,6 +127,10 @@ fn ranges_must_continue_the_film() {
         Err(RenderError::SampleRange { next: 2, .. }) => {}
         other => panic!("expected a sample-range error, got {other:?}"),
     }
+    // A driver that fills the film itself records its ranges the same way.
+    assert!(s.mark_rendered(5..6).is_err());
+    s.mark_rendered(2..4).unwrap();
+    assert_eq!((s.next_sample(), s.film().samples_per_pixel()), (Some(4), 4));
     let wrong = Film::new(4, 4);
     assert!(matches!(
         RenderSession::with_film(&scene, &opts(1, 16), wrong, 0),

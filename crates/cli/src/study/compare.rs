@@ -1,4 +1,4 @@
-//! `mcrender compare`: the efficiency report. Each technique renders the same scene with
+//! `mcrender compare`: the efficiency report (computed by `mcrender_core::lab::compare`). Each technique renders the same scene with
 //! the same samples per pixel; the table gives its mean radiance, average per-pixel
 //! variance (from the samples' own second moments), relative MSE against a reference when
 //! one is given, render time, efficiency `1 / (variance x time)` and efficiency relative to
@@ -8,10 +8,10 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use mcrender_core::film::FilmStatistics;
+use mcrender_core::lab::{compare_techniques, CompareRow};
 use mcrender_core::scene::{DirectStrategy, SamplerKind};
 
-use super::{film_image, load_reference, render_in_waves, write_into};
+use super::{film_image, load_reference, write_into};
 use crate::lab::plot::convergence_plot;
 use crate::lab::sheet::contact_sheet;
 use crate::scene_args::{parse_strategy, SceneArgs};
@@ -38,15 +38,6 @@ pub struct CompareArgs {
     pub out_dir: PathBuf,
 }
 
-/// One row of the report.
-struct Row {
-    technique: &'static str,
-    stats: FilmStatistics,
-    seconds: f64,
-    rays: u64,
-    efficiency: f64,
-}
-
 /// Run the command.
 pub fn run(args: &CompareArgs) -> Result<()> {
     if args.techniques.is_empty() {
@@ -69,40 +60,21 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         );
     }
 
-    let mut rows = Vec::new();
+    let rows = compare_techniques(&base, &args.techniques, reference.as_deref(), args.scene.threads, |t| {
+        eprintln!("mcrender: compare: rendering {} at {spp} spp", t.name());
+    })?;
     let mut images = Vec::new();
     let mut series = Vec::new();
-    for &technique in &args.techniques {
-        let mut desc = base.clone();
-        desc.integrator.direct = technique;
-        eprintln!("mcrender: compare: rendering {} at {spp} spp", technique.name());
-        let measure = |f: &_| {
-            let s = FilmStatistics::measure(f, reference.as_deref());
-            s.rel_mse.unwrap_or(s.mean_variance)
-        };
-        let prog = render_in_waves(&desc, args.scene.threads, measure)?;
-        let stats = FilmStatistics::measure(&prog.film, reference.as_deref());
-        let seconds = prog.time.as_secs_f64();
-        let img = film_image(&prog.film);
-        write_into(&args.out_dir, &format!("{stem}-{}.exr", technique.name()), &img)?;
-        images.push((technique.name().to_string(), img));
+    for r in &rows {
+        let name = r.technique.name();
+        let img = film_image(&r.progression.film);
+        write_into(&args.out_dir, &format!("{stem}-{name}.exr"), &img)?;
+        images.push((name.to_string(), img));
         series.push((
-            technique.name().to_string(),
-            prog.points.iter().map(|&(n, e)| (f64::from(n), e)).collect(),
+            name.to_string(),
+            r.progression.points.iter().map(|&(n, e)| (f64::from(n), e)).collect(),
         ));
-        rows.push(Row {
-            technique: technique.name(),
-            stats,
-            seconds,
-            rays: prog.rays,
-            efficiency: efficiency(stats.mean_variance, seconds),
-        });
     }
-    let best = rows
-        .iter()
-        .map(|r| r.efficiency)
-        .filter(|e| e.is_finite())
-        .fold(0.0, f64::max);
 
     let columns = images.len().min(3);
     let sheet = contact_sheet(&images, columns)?;
@@ -125,8 +97,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             .iter()
             .map(|r| {
                 serde_json::json!({
-                    "technique": r.technique,
-                    "spp": spp,
+                    "technique": r.technique.name(),
+                    "spp": r.spp,
                     "mean_radiance": r.stats.mean.to_array(),
                     "mean_luminance": r.stats.mean.luminance(),
                     "variance": r.stats.mean_variance,
@@ -134,7 +106,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
                     "time_s": r.seconds,
                     "rays": r.rays,
                     "efficiency": r.efficiency,
-                    "relative_efficiency": r.efficiency / best,
+                    "relative_efficiency": r.relative_efficiency,
                 })
             })
             .collect();
@@ -143,7 +115,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             serde_json::to_string_pretty(&serde_json::json!({ "scene": stem, "techniques": table }))?
         );
     } else {
-        print_table(&rows, best, spp, reference.is_some());
+        print_table(&rows, spp, reference.is_some());
     }
     eprintln!(
         "mcrender: compare: wrote {} and {}",
@@ -153,12 +125,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// Efficiency `1 / (variance x time)`; infinite for a noiseless estimate.
-fn efficiency(variance: f64, seconds: f64) -> f64 {
-    1.0 / (variance * seconds)
-}
-
-fn print_table(rows: &[Row], best: f64, spp: u32, with_reference: bool) {
+fn print_table(rows: &[CompareRow], spp: u32, with_reference: bool) {
     println!(
         "{:<20}{:>6}{:>12}{:>14}{:>14}{:>10}{:>14}{:>10}",
         "technique",
@@ -173,14 +140,14 @@ fn print_table(rows: &[Row], best: f64, spp: u32, with_reference: bool) {
     for r in rows {
         println!(
             "{:<20}{:>6}{:>12.5}{:>14.4e}{:>14}{:>10.3}{:>14.4e}{:>10.3}",
-            r.technique,
+            r.technique.name(),
             spp,
             r.stats.mean.luminance(),
             r.stats.mean_variance,
             r.stats.rel_mse.map_or("-".to_string(), |e| format!("{e:.4e}")),
             r.seconds,
             r.efficiency,
-            r.efficiency / best
+            r.relative_efficiency
         );
     }
     println!("variance: average over pixels of the variance of the pixel's luminance estimate; efficiency = 1 / (variance x time)");

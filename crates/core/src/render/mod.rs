@@ -25,7 +25,7 @@ mod session;
 mod tiles;
 mod waves;
 
-pub use observer::{ProgressFn, RenderObserver, Watch};
+pub use observer::{is_cancelled, ProgressFn, RenderObserver, Watch};
 pub use session::RenderSession;
 pub use tiles::{tiles, Tile};
 pub use waves::doubling_waves;

@@ -23,6 +23,14 @@ pub trait RenderObserver: Sync {
     }
 }
 
+/// Whether the observer's cancel flag is set (for drivers checking between work units).
+#[must_use]
+pub fn is_cancelled(observer: &dyn RenderObserver) -> bool {
+    observer
+        .cancel_flag()
+        .is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
+}
+
 /// Nothing to watch.
 impl RenderObserver for () {}
 

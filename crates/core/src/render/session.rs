@@ -7,7 +7,9 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::{doubling_waves, tiles, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats, Tile};
+use super::{
+    doubling_waves, is_cancelled, tiles, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats, Tile,
+};
 use crate::film::{Film, PixelStats, Splat};
 use crate::integrator::{Integrator, TraceStats};
 use crate::math::{UVec2, Vec2};
@@ -130,6 +132,27 @@ impl<'s> RenderSession<'s> {
         self.film
     }
 
+    /// The film, for drivers that fill it themselves (SPPM, MLT; their integrator modules
+    /// render through [`Self::pool`], check [`RenderObserver::cancel_flag`] between their
+    /// work units, report [`RenderObserver::progress`], then call [`Self::mark_rendered`]).
+    pub fn film_mut(&mut self) -> &mut Film {
+        &mut self.film
+    }
+
+    /// Record that a driver rendered sample indices (iterations, passes) `range` into the
+    /// film itself: the film's sample count grows and the next range must follow it.
+    pub fn mark_rendered(&mut self, range: Range<u32>) -> Result<(), RenderError> {
+        if let Some(next) = self.next_sample {
+            if range.start != next {
+                return Err(RenderError::SampleRange { next, found: range });
+            }
+        }
+        self.film
+            .add_samples_per_pixel(u64::from(range.end.saturating_sub(range.start)));
+        self.next_sample = Some(range.end.max(range.start));
+        Ok(())
+    }
+
     /// The first sample index of the next range (`None` before the first).
     #[must_use]
     pub fn next_sample(&self) -> Option<u32> {
@@ -224,7 +247,7 @@ impl<'s> RenderSession<'s> {
         total: u64,
         stats: &mut RenderStats,
     ) -> Result<(), RenderError> {
-        let cancelled = || observer.cancel_flag().is_some_and(|c| c.load(Ordering::Relaxed));
+        let cancelled = || is_cancelled(observer);
         if cancelled() {
             return Err(RenderError::Cancelled {
                 samples_done: self.film.samples_per_pixel(),

@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use exr::meta::attribute::{AttributeValue, Text};
+use exr::meta::MetaData;
 use exr::prelude::{
     read_first_rgba_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes,
     WritableImage,
@@ -20,6 +22,21 @@ use super::{check_size, ImageError, ImageRgb};
 /// No layers, a layer whose pixel count does not match, duplicate layer names, or an I/O
 /// or encoder failure (the target is then left untouched).
 pub fn write_exr_layers(path: &Path, width: u32, height: u32, layers: &[(&str, &[Rgb])]) -> Result<(), ImageError> {
+    write_exr_layers_with_metadata(path, width, height, layers, &[])
+}
+
+/// [`write_exr_layers`] with text attributes `(name, value)` in the layer's header (e.g.
+/// the samples per pixel of a partial render), readable with [`read_exr_metadata`].
+///
+/// # Errors
+/// As [`write_exr_layers`], and an attribute name or value that is not EXR text.
+pub fn write_exr_layers_with_metadata(
+    path: &Path,
+    width: u32,
+    height: u32,
+    layers: &[(&str, &[Rgb])],
+    metadata: &[(&str, &str)],
+) -> Result<(), ImageError> {
     if layers.is_empty() {
         return Err(ImageError::InvalidImage {
             path: path.to_path_buf(),
@@ -48,9 +65,19 @@ pub fn write_exr_layers(path: &Path, width: u32, height: u32, layers: &[(&str, &
             ));
         }
     }
+    let mut attributes = LayerAttributes::default();
+    for (name, value) in metadata {
+        let (Some(n), Some(v)) = (Text::new_or_none(name), Text::new_or_none(value)) else {
+            return Err(ImageError::InvalidImage {
+                path: path.to_path_buf(),
+                message: format!("attribute \"{name}\" is not EXR text"),
+            });
+        };
+        attributes.other.insert(n, AttributeValue::Text(v));
+    }
     let layer = Layer::new(
         (width as usize, height as usize),
-        LayerAttributes::default(),
+        attributes,
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(channels.into()),
     );
@@ -61,6 +88,33 @@ pub fn write_exr_layers(path: &Path, width: u32, height: u32, layers: &[(&str, &
             message: e.to_string(),
         })
     })
+}
+
+/// The text attributes of an EXR file's first layer header, sorted by name.
+///
+/// # Errors
+/// When the file cannot be read or is not an EXR file.
+pub fn read_exr_metadata(path: &Path) -> Result<Vec<(String, String)>, ImageError> {
+    let meta = MetaData::read_from_file(path, false).map_err(|e| ImageError::Codec {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let mut out: Vec<(String, String)> = meta
+        .headers
+        .first()
+        .map(|h| {
+            h.own_attributes
+                .other
+                .iter()
+                .filter_map(|(k, v)| match v {
+                    AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+                    _ => None,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    out.sort();
+    Ok(out)
 }
 
 /// Read the first RGB layer of an EXR file (any sample type; alpha is ignored).

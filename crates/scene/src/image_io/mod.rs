@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
 
-pub use self::exr::{read_exr, write_exr_layers};
+pub use self::exr::{read_exr, read_exr_metadata, write_exr_layers, write_exr_layers_with_metadata};
 pub use self::pfm::read_pfm;
 pub use self::read::{read_image, read_image_encoded, ColorEncoding};
 

@@ -1,0 +1,286 @@
+//! Checkpoint, resume and interruption of `mcrender render` (issue 10 items 2 and 3): a
+//! render killed with SIGKILL after a checkpoint, or stopped with SIGINT / SIGTERM, resumes
+//! to the same bytes as a render never stopped; checkpoints that do not match are refused
+//! with exit 2 and nothing overwritten; no temporary file is ever left.
+
+mod common;
+
+use std::os::unix::process::ExitStatusExt;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use common::{mcrender, scene, stderr};
+
+const SPP: &str = "300";
+const RES: &str = "24x24";
+
+fn base_args(out: &str) -> Vec<String> {
+    [
+        &scene("cornell-box/scene-v4.pbrt"),
+        "--spp",
+        SPP,
+        "--resolution",
+        RES,
+        "-o",
+        out,
+        "-q",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}
+
+/// The uninterrupted render's bytes (rendered once for all tests).
+fn reference() -> &'static [u8] {
+    static REF: OnceLock<Vec<u8>> = OnceLock::new();
+    REF.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap();
+        let mut a = vec!["render".to_string()];
+        a.extend(base_args("ref.exr"));
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = mcrender(&a, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(dir.path().join("ref.exr")).unwrap()
+    })
+}
+
+fn spawn(dir: &Path, extra: &[&str]) -> Child {
+    let mut args = vec!["render".to_string()];
+    args.extend(base_args("out.exr"));
+    args.extend(extra.iter().map(|s| s.to_string()));
+    Command::new(env!("CARGO_BIN_EXE_mcrender"))
+        .args(&args)
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("mcrender starts")
+}
+
+fn wait_for(path: &Path, child: &mut Child) {
+    let start = Instant::now();
+    while !path.exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the render ended before its first checkpoint"
+        );
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "no checkpoint after 2 minutes"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+fn signal(child: &Child, sig: &str) {
+    let ok = Command::new("kill")
+        .args([sig, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(ok.success());
+}
+
+/// Names in `dir` that look like temporary files.
+fn temp_files(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.') || n.contains("tmp"))
+        .collect()
+}
+
+fn resume(dir: &Path, ckpt: &str, extra: &[&str]) -> std::process::Output {
+    let mut a = vec!["render", "--resume", ckpt, "-q"];
+    a.extend(extra);
+    mcrender(&a, dir)
+}
+
+#[test]
+fn sigkill_after_the_first_checkpoint_resumes_to_the_same_bytes() {
+    let reference = reference();
+    let dir = tempfile::tempdir().unwrap();
+    let ckpt = dir.path().join("c.ckpt");
+    let mut child = spawn(
+        dir.path(),
+        &[
+            "--checkpoint",
+            "c.ckpt",
+            "--checkpoint-every",
+            "100ms",
+            "--threads",
+            "2",
+        ],
+    );
+    wait_for(&ckpt, &mut child);
+    child.kill().unwrap(); // SIGKILL
+    let status = child.wait().unwrap();
+    assert_eq!(status.signal(), Some(9), "{status:?}");
+    assert!(!dir.path().join("out.exr").exists());
+    // A different thread count on resume does not change the image.
+    let o = resume(dir.path(), "c.ckpt", &["--threads", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(dir.path().join("out.exr")).unwrap(), reference);
+    assert!(!ckpt.exists(), "a finished render removes its checkpoint");
+    assert_eq!(temp_files(dir.path()), Vec::<String>::new());
+}
+
+fn interrupted_render(sig: &str, code: i32) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = spawn(dir.path(), &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
+    // The first checkpoint shows the render is under way with its handlers installed.
+    wait_for(&dir.path().join("c.ckpt"), &mut child);
+    signal(&child, sig);
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(code), "{err}");
+    assert!(err.contains("samples per pixel") && err.contains("--resume"), "{err}");
+    assert_eq!(temp_files(dir.path()), Vec::<String>::new());
+    dir
+}
+
+#[test]
+fn sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
+    let reference = reference();
+    let dir = interrupted_render("-INT", 130);
+    let out = dir.path().join("out.exr");
+    let meta = mcrender_scene::image_io::read_exr_metadata(&out).unwrap();
+    let spp: u32 = meta
+        .iter()
+        .find(|(k, _)| k == "mcrender.samplesPerPixel")
+        .map(|(_, v)| v.parse().unwrap())
+        .expect("sample count in the EXR header");
+    assert!(spp < 300, "{meta:?}");
+    assert!(meta.contains(&("mcrender.samplesRequested".into(), SPP.into())));
+    let partial = mcrender_scene::image_io::read_exr(&out).unwrap();
+    assert_eq!((partial.width, partial.height), (24, 24));
+    if spp > 0 {
+        assert!(
+            partial.pixels.iter().any(|p| p.r > 0.0),
+            "the partial image has content"
+        );
+    }
+    let o = resume(dir.path(), "c.ckpt", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&out).unwrap(), reference);
+}
+
+#[test]
+fn sigterm_exits_143_and_running_the_same_command_again_continues() {
+    let reference = reference();
+    let dir = interrupted_render("-TERM", 143);
+    let o = spawn(dir.path(), &["--checkpoint", "c.ckpt"])
+        .wait_with_output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("continuing the render"));
+    assert_eq!(std::fs::read(dir.path().join("out.exr")).unwrap(), reference);
+}
+
+/// A directory with a copy of the scene, an interrupted render's checkpoint `c.ckpt`, and
+/// a sentinel `out.exr`.
+fn checkpointed_copy() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("scene.pbrt");
+    std::fs::copy(scene("cornell-box/scene-v4.pbrt"), &scene_path).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mcrender"))
+        .args([
+            "render",
+            "scene.pbrt",
+            "--spp",
+            SPP,
+            "--resolution",
+            RES,
+            "-o",
+            "out.exr",
+            "-q",
+        ])
+        .args(["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"])
+        .current_dir(dir.path())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for(&dir.path().join("c.ckpt"), &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    std::fs::write(dir.path().join("out.exr"), b"sentinel").unwrap();
+    (dir, scene_path)
+}
+
+fn assert_refused(o: &std::process::Output, dir: &Path, ckpt: &[u8], what: &str) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{what}: {err}");
+    assert_eq!(err.trim().lines().count(), 1, "{what}: one line: {err}");
+    assert!(err.contains("checkpoint"), "{what}: {err}");
+    assert_eq!(
+        std::fs::read(dir.join("out.exr")).unwrap(),
+        b"sentinel",
+        "{what}: output overwritten"
+    );
+    assert_eq!(
+        std::fs::read(dir.join("c.ckpt")).unwrap(),
+        ckpt,
+        "{what}: checkpoint overwritten"
+    );
+    assert_eq!(temp_files(dir), Vec::<String>::new(), "{what}");
+}
+
+#[test]
+fn mismatched_truncated_and_foreign_checkpoints_are_refused() {
+    let (dir, scene_path) = checkpointed_copy();
+    let d = dir.path();
+    let good = std::fs::read(d.join("c.ckpt")).unwrap();
+
+    // Truncated.
+    std::fs::write(d.join("c.ckpt"), &good[..good.len() / 2]).unwrap();
+    let cut = good[..good.len() / 2].to_vec();
+    assert_refused(&resume(d, "c.ckpt", &[]), d, &cut, "truncated");
+    std::fs::write(d.join("c.ckpt"), &good).unwrap();
+
+    // Another scene's checkpoint under this render's --checkpoint name.
+    let other = [
+        "render",
+        "scene.pbrt",
+        "--spp",
+        SPP,
+        "--resolution",
+        RES,
+        "-o",
+        "out.exr",
+        "-q",
+        "--seed",
+        "99",
+        "--checkpoint",
+        "c.ckpt",
+    ];
+    assert_refused(&mcrender(&other, d), d, &good, "other settings");
+    let text = std::fs::read_to_string(&scene_path).unwrap();
+    let text = text.replacen("WorldBegin", "WorldBegin\nAttributeBegin AttributeEnd", 1);
+    std::fs::write(d.join("foreign.pbrt"), text).unwrap();
+    let foreign = [
+        "render",
+        "foreign.pbrt",
+        "--spp",
+        SPP,
+        "--resolution",
+        RES,
+        "-o",
+        "out.exr",
+        "-q",
+        "--checkpoint",
+        "c.ckpt",
+    ];
+    assert_refused(&mcrender(&foreign, d), d, &good, "another scene");
+
+    // Wrong fingerprint: the scene changed since the checkpoint.
+    let mut text = std::fs::read_to_string(&scene_path).unwrap();
+    text.push_str("\n# edited\n");
+    std::fs::write(&scene_path, text).unwrap();
+    assert_refused(&resume(d, "c.ckpt", &[]), d, &good, "edited scene");
+
+    // Not a checkpoint at all.
+    let o = resume(d, "out.exr", &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read(d.join("out.exr")).unwrap(), b"sentinel");
+}

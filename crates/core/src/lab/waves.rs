@@ -1,0 +1,64 @@
+//! Rendering a film in waves of doubling sample counts (1, 2, 4, ...), measuring it after
+//! every wave: the data of a convergence plot. The waves continue one
+//! [`RenderSession`]'s film, so the final film is the one a single pass gives.
+
+use std::time::Duration;
+
+use crate::film::Film;
+use crate::render::{RenderError, RenderOptions, RenderSession};
+use crate::scene::{BuildError, Scene, SceneDescription};
+
+/// Why a study could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum LabError {
+    /// The scene description cannot be built.
+    #[error("the scene cannot be rendered: {0}")]
+    Build(#[from] BuildError),
+    /// The render failed.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// A bad argument (no techniques, a reference of the wrong size, ...).
+    #[error("{0}")]
+    Argument(String),
+}
+
+/// A film grown in waves of doubling sample counts, with the time spent and a measurement
+/// after every wave.
+#[derive(Clone, Debug)]
+pub struct Progression {
+    /// The accumulated film.
+    pub film: Film,
+    /// Render time summed over waves (scene building excluded).
+    pub time: Duration,
+    /// Rays traced (closest-hit and shadow).
+    pub rays: u64,
+    /// `(samples per pixel so far, measurement)` after each wave.
+    pub points: Vec<(u32, f64)>,
+}
+
+/// Render `desc` up to its sample count in waves 1, 2, 4, ... (the last wave tops up to
+/// the sample count) of one render session, calling `measure` on the film after each. The
+/// final film is bit-identical to a render in one pass.
+pub fn render_in_waves(
+    desc: &SceneDescription,
+    threads: Option<usize>,
+    measure: impl Fn(&Film) -> f64,
+) -> Result<Progression, LabError> {
+    let scene = Scene::build(desc)?;
+    let spp = desc.sampler.samples_per_pixel;
+    let opts = RenderOptions {
+        threads,
+        ..Default::default()
+    };
+    let mut session = RenderSession::new(&scene, &opts)?;
+    let mut points = Vec::new();
+    let stats = session.render_in_waves(0..spp, &(), |film, _| {
+        points.push((film.samples_per_pixel() as u32, measure(film)));
+    })?;
+    Ok(Progression {
+        film: session.into_film(),
+        time: stats.elapsed,
+        rays: stats.trace.rays + stats.trace.shadow_rays,
+        points,
+    })
+}

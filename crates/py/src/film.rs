@@ -1,0 +1,167 @@
+//! `mcrender.Film`: the per-pixel sums of a render of some sample range (weights, weighted
+//! radiance and its square, sample counts and splat sums, in `f64`). Films of consecutive
+//! sample ranges merge (in sample order) into the film of their union, up to the rounding
+//! of the f64 additions' grouping; this is how `mcrender.distributed` assembles chunks
+//! rendered on Ray workers. Films pickle to a compact byte string.
+
+use mcrender_core::color::Rgb;
+use mcrender_core::film::{Film, PixelStats};
+use numpy::ndarray::Array3;
+use numpy::{IntoPyArray, PyArray3};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyTuple};
+
+/// Bytes of the header (width, height as little-endian u32, samples per pixel as u64) and
+/// of one pixel (seven f64 sums, a u64 count, three f64 splat sums).
+const HEADER: usize = 16;
+const PIXEL: usize = 88;
+
+/// The accumulated samples of a render: `image()` is the estimate, `variance()` the
+/// estimated variance of each pixel's estimate.
+#[pyclass(name = "Film", module = "mcrender", frozen)]
+pub struct PyFilm {
+    /// The sums.
+    pub film: Film,
+}
+
+/// An (H, W, 3) float32 numpy array.
+pub type Image<'py> = Bound<'py, PyArray3<f32>>;
+
+/// An (H, W, 3) float32 array of `pixels` (row-major).
+pub fn rgb_array<'py>(py: Python<'py>, width: u32, height: u32, pixels: &[Rgb]) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let data: Vec<f32> = pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let array = Array3::from_shape_vec((height as usize, width as usize, 3), data)
+        .map_err(|e| PyValueError::new_err(format!("image of {width}x{height} pixels: {e}")))?;
+    Ok(array.into_pyarray(py))
+}
+
+impl PyFilm {
+    fn encode(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(HEADER + PIXEL * self.film.pixels().len());
+        out.extend_from_slice(&self.film.width().to_le_bytes());
+        out.extend_from_slice(&self.film.height().to_le_bytes());
+        out.extend_from_slice(&self.film.samples_per_pixel().to_le_bytes());
+        for (p, splat) in self.film.pixels().iter().zip(self.film.splat_sums()) {
+            out.extend_from_slice(&p.sum_w.to_le_bytes());
+            for v in p.sum_wl.iter().chain(&p.sum_wl2) {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+            out.extend_from_slice(&p.count.to_le_bytes());
+            for v in splat {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        out
+    }
+
+    fn decode(bytes: &[u8]) -> PyResult<Film> {
+        let bad = || PyValueError::new_err("Film.from_bytes: not a film's bytes (see Film.to_bytes)");
+        let word = |i: usize| -> [u8; 8] { bytes[i..i + 8].try_into().unwrap_or_default() };
+        if bytes.len() < HEADER {
+            return Err(bad());
+        }
+        let width = u32::from_le_bytes(bytes[0..4].try_into().map_err(|_| bad())?);
+        let height = u32::from_le_bytes(bytes[4..8].try_into().map_err(|_| bad())?);
+        let spp = u64::from_le_bytes(word(8));
+        let n = width as usize * height as usize;
+        if bytes.len() != HEADER + PIXEL * n {
+            return Err(bad());
+        }
+        let (mut pixels, mut splats) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for i in 0..n {
+            let at = HEADER + PIXEL * i;
+            let f = |k: usize| f64::from_le_bytes(word(at + 8 * k));
+            pixels.push(PixelStats {
+                sum_w: f(0),
+                sum_wl: [f(1), f(2), f(3)],
+                sum_wl2: [f(4), f(5), f(6)],
+                count: u64::from_le_bytes(word(at + 56)),
+            });
+            splats.push([f(8), f(9), f(10)]);
+        }
+        let film = Film::from_parts(width, height, pixels, splats, spp).ok_or_else(bad)?;
+        Ok(film)
+    }
+}
+
+#[pymethods]
+impl PyFilm {
+    /// Width in pixels.
+    #[getter]
+    fn width(&self) -> u32 {
+        self.film.width()
+    }
+
+    /// Height in pixels.
+    #[getter]
+    fn height(&self) -> u32 {
+        self.film.height()
+    }
+
+    /// Samples per pixel rendered into the film.
+    #[getter]
+    fn samples(&self) -> u64 {
+        self.film.samples_per_pixel()
+    }
+
+    /// A new film with `other`'s samples added to this one's. Merge films in sample order
+    /// (0..a, then a..b, ...).
+    fn merged(&self, other: &PyFilm) -> PyResult<PyFilm> {
+        if (self.film.width(), self.film.height()) != (other.film.width(), other.film.height()) {
+            return Err(PyValueError::new_err(format!(
+                "Film.merged: films of different sizes ({}x{} and {}x{})",
+                self.film.width(),
+                self.film.height(),
+                other.film.width(),
+                other.film.height()
+            )));
+        }
+        let mut film = self.film.clone();
+        film.merge(&other.film);
+        Ok(PyFilm { film })
+    }
+
+    /// The estimate: an (H, W, 3) float32 array of linear RGB.
+    fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        rgb_array(py, self.film.width(), self.film.height(), &self.film.mean_image())
+    }
+
+    /// The estimated variance of each pixel's estimate, (H, W, 3) float32.
+    fn variance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        rgb_array(py, self.film.width(), self.film.height(), &self.film.variance_image())
+    }
+
+    /// The sums as bytes (little-endian; what pickling uses).
+    fn to_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.encode())
+    }
+
+    /// A film from [`to_bytes`](Self::to_bytes)' output.
+    #[staticmethod]
+    fn from_bytes(data: &[u8]) -> PyResult<PyFilm> {
+        Ok(PyFilm {
+            film: Self::decode(data)?,
+        })
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let ctor = py.get_type::<PyFilm>().getattr("from_bytes")?;
+        let bytes = slf.get().to_bytes(py);
+        PyTuple::new(py, [ctor.into_any(), PyTuple::new(py, [bytes])?.into_any()])
+    }
+
+    fn __eq__(&self, other: &PyFilm) -> bool {
+        self.film == other.film
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Film({}x{}, {} samples per pixel)",
+            self.film.width(),
+            self.film.height(),
+            self.samples()
+        )
+    }
+}

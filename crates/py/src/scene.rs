@@ -1,0 +1,282 @@
+//! `mcrender.load(path) -> Scene` and the `Scene` class: a loaded scene description whose
+//! resolution, samples per pixel, integrator, direct-lighting technique, seed and maximum
+//! depth can be changed before rendering, and its `render*` methods returning numpy arrays.
+
+use std::path::PathBuf;
+
+use mcrender_core::render::{RenderOptions, RenderOutput};
+use mcrender_core::scene::{DirectStrategy, IntegratorKind, Scene, SceneDescription};
+use numpy::PyArray3;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+use crate::errors::{build_error, scene_error};
+use crate::film::{rgb_array, Image, PyFilm};
+use crate::run::{render_range, Progress, ProgressArg};
+
+/// A scene loaded from a file, ready to render.
+#[pyclass(name = "Scene", module = "mcrender")]
+pub struct PyScene {
+    /// The description the loader produced, with the properties' changes.
+    pub desc: SceneDescription,
+    /// The file it came from.
+    path: PathBuf,
+    /// The loader's warnings.
+    warnings: Vec<String>,
+}
+
+/// Load a pbrt-v4 scene file (and the files it includes or references).
+#[pyfunction]
+pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+    let loaded = py
+        .detach(|| mcrender_scene::load_file(&path))
+        .map_err(|e| scene_error(py, &e))?;
+    Ok(PyScene {
+        desc: loaded.description,
+        path,
+        warnings: loaded.warnings,
+    })
+}
+
+fn positive(name: &str, v: u32) -> PyResult<u32> {
+    if v == 0 {
+        return Err(PyValueError::new_err(format!("{name}: expected at least 1, found 0")));
+    }
+    Ok(v)
+}
+
+/// Technique by name.
+pub fn parse_technique(name: &str) -> PyResult<DirectStrategy> {
+    DirectStrategy::ALL
+        .into_iter()
+        .find(|d| d.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<_> = DirectStrategy::ALL.iter().map(|d| d.name()).collect();
+            PyValueError::new_err(format!(
+                "technique: expected one of {}, found \"{name}\"",
+                names.join(", ")
+            ))
+        })
+}
+
+impl PyScene {
+    /// Build the scene with the per-call overrides and render `start..end` (default
+    /// `0..spp`).
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        py: Python<'_>,
+        start: u32,
+        end: Option<u32>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        progress: &ProgressArg,
+    ) -> PyResult<RenderOutput> {
+        let mut desc = self.desc.clone();
+        if let Some(spp) = spp {
+            desc.sampler.samples_per_pixel = positive("spp", spp)?;
+        }
+        if let Some(seed) = seed {
+            desc.sampler.seed = seed;
+        }
+        if threads == Some(0) {
+            return Err(PyValueError::new_err("threads: expected at least 1, found 0"));
+        }
+        let end = end.unwrap_or(desc.sampler.samples_per_pixel);
+        if start >= end {
+            return Err(PyValueError::new_err(format!(
+                "sample range: expected start < end, found {start}..{end}"
+            )));
+        }
+        let scene = py.detach(|| Scene::build(&desc)).map_err(|e| build_error(&e))?;
+        let pixels = u64::from(desc.film.width) * u64::from(desc.film.height);
+        let mut progress = Progress::from_arg(py, progress, pixels * u64::from(end - start), "mcrender")?;
+        let opts = RenderOptions {
+            threads,
+            ..Default::default()
+        };
+        render_range(py, &scene, &opts, start..end, &mut progress)
+    }
+}
+
+#[pymethods]
+impl PyScene {
+    /// Render all samples per pixel; an (H, W, 3) float32 array of linear RGB.
+    #[pyo3(signature = (spp=None, seed=None, threads=None, progress=ProgressArg::Flag(true)))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        progress: ProgressArg,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let out = self.run(py, 0, None, spp, seed, threads, &progress)?;
+        let (w, h) = (out.film.width(), out.film.height());
+        rgb_array(py, w, h, &out.film.mean_image())
+    }
+
+    /// Render; `(image, variance)`, the variance being each pixel's estimated variance of
+    /// its estimate, both (H, W, 3) float32.
+    #[pyo3(signature = (spp=None, seed=None, threads=None, progress=ProgressArg::Flag(true)))]
+    fn render_with_variance<'py>(
+        &self,
+        py: Python<'py>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        progress: ProgressArg,
+    ) -> PyResult<(Image<'py>, Image<'py>)> {
+        let out = self.run(py, 0, None, spp, seed, threads, &progress)?;
+        let (w, h) = (out.film.width(), out.film.height());
+        Ok((
+            rgb_array(py, w, h, &out.film.mean_image())?,
+            rgb_array(py, w, h, &out.film.variance_image())?,
+        ))
+    }
+
+    /// Render only the sample indices `start..end` of every pixel; the estimate from those
+    /// samples, (H, W, 3) float32.
+    #[pyo3(signature = (start, end, seed=None, threads=None, progress=ProgressArg::Flag(true)))]
+    fn render_samples<'py>(
+        &self,
+        py: Python<'py>,
+        start: u32,
+        end: u32,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        progress: ProgressArg,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let out = self.run(py, start, Some(end), None, seed, threads, &progress)?;
+        let (w, h) = (out.film.width(), out.film.height());
+        rgb_array(py, w, h, &out.film.mean_image())
+    }
+
+    /// Render the sample indices `start..end` (default: all) and return the film, whose
+    /// sums merge with films of the following ranges (`Film.merged`).
+    #[pyo3(signature = (start=0, end=None, seed=None, threads=None, progress=ProgressArg::Flag(false)))]
+    fn render_film(
+        &self,
+        py: Python<'_>,
+        start: u32,
+        end: Option<u32>,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        progress: ProgressArg,
+    ) -> PyResult<PyFilm> {
+        let out = self.run(py, start, end, None, seed, threads, &progress)?;
+        Ok(PyFilm { film: out.film })
+    }
+
+    /// The file the scene was loaded from.
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.path.clone()
+    }
+
+    /// The loader's warnings (`file:line:col: warning: ...`).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
+    }
+
+    /// Image size `(width, height)` in pixels.
+    #[getter]
+    fn get_resolution(&self) -> (u32, u32) {
+        (self.desc.film.width, self.desc.film.height)
+    }
+
+    #[setter]
+    fn set_resolution(&mut self, value: (u32, u32)) -> PyResult<()> {
+        self.desc.film.width = positive("resolution width", value.0)?;
+        self.desc.film.height = positive("resolution height", value.1)?;
+        Ok(())
+    }
+
+    /// Samples per pixel.
+    #[getter]
+    fn get_spp(&self) -> u32 {
+        self.desc.sampler.samples_per_pixel
+    }
+
+    #[setter]
+    fn set_spp(&mut self, value: u32) -> PyResult<()> {
+        self.desc.sampler.samples_per_pixel = positive("spp", value)?;
+        Ok(())
+    }
+
+    /// Random seed: the same seed and spp give the same image bit for bit.
+    #[getter]
+    fn get_seed(&self) -> u64 {
+        self.desc.sampler.seed
+    }
+
+    #[setter]
+    fn set_seed(&mut self, value: u64) {
+        self.desc.sampler.seed = value;
+    }
+
+    /// Maximum path depth (0 emission only, 1 direct lighting, 2 one bounce, ...).
+    #[getter]
+    fn get_max_depth(&self) -> u32 {
+        self.desc.integrator.max_depth
+    }
+
+    #[setter]
+    fn set_max_depth(&mut self, value: u32) {
+        self.desc.integrator.max_depth = value;
+    }
+
+    /// The integrator: "path", "direct", "lightpath" (or "sppm", read only).
+    #[getter]
+    fn get_integrator(&self) -> &'static str {
+        match self.desc.integrator.kind {
+            IntegratorKind::Path => "path",
+            IntegratorKind::Direct => "direct",
+            IntegratorKind::LightPath => "lightpath",
+            IntegratorKind::Sppm => "sppm",
+        }
+    }
+
+    #[setter]
+    fn set_integrator(&mut self, value: &str) -> PyResult<()> {
+        self.desc.integrator.kind = match value {
+            "path" => IntegratorKind::Path,
+            "direct" => IntegratorKind::Direct,
+            "lightpath" => IntegratorKind::LightPath,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "integrator: expected \"path\", \"direct\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
+                )))
+            }
+        };
+        Ok(())
+    }
+
+    /// The direct-lighting technique: "uniform-hemisphere", "cosine-hemisphere",
+    /// "light-area", "bsdf" or "mis".
+    #[getter]
+    fn get_direct(&self) -> &'static str {
+        self.desc.integrator.direct.name()
+    }
+
+    #[setter]
+    fn set_direct(&mut self, value: &str) -> PyResult<()> {
+        self.desc.integrator.direct = parse_technique(value)?;
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Scene({:?}, resolution={}x{}, spp={}, integrator={:?}, max_depth={}, seed={})",
+            self.path.display().to_string(),
+            self.desc.film.width,
+            self.desc.film.height,
+            self.desc.sampler.samples_per_pixel,
+            self.get_integrator(),
+            self.desc.integrator.max_depth,
+            self.desc.sampler.seed
+        )
+    }
+}
