@@ -228,8 +228,7 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "lightpath" or "sppm" (SPPM has its own driver,
-    /// which the Python bindings do not run yet: rendering it raises ValueError).
+    /// The integrator: "path", "direct", "lightpath" (or "sppm", read only).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -246,10 +245,9 @@ impl PyScene {
             "path" => IntegratorKind::Path,
             "direct" => IntegratorKind::Direct,
             "lightpath" => IntegratorKind::LightPath,
-            "sppm" => IntegratorKind::Sppm,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"lightpath\" or \"sppm\", found \"{value}\""
+                    "integrator: expected \"path\", \"direct\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
                 )))
             }
         };

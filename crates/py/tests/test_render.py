@@ -235,6 +235,5 @@ def test_light_tracing_equals_the_cli_and_sppm_is_refused(cli, scene_path, tmp_p
     scene.integrator = "lightpath"
     scene.resolution = (32, 24)
     assert scene.render(spp=2, progress=False).tobytes() == mcrender.read_image(out).tobytes()
-    scene.integrator = "sppm"
     with pytest.raises(ValueError):
-        scene.render(spp=1, progress=False)
+        scene.integrator = "sppm"  # its own driver, not run from Python yet
