@@ -126,6 +126,7 @@ fn run_scene(path: &Path) -> Outcome {
     let (name, integrator) = stem.rsplit_once('_').expect("name_integrator.xml");
     let mut options = LoadOptions {
         defines: vec![("integrator".into(), integrator.into())],
+        ..LoadOptions::default()
     };
     let probe = match load_with(path, &options) {
         Ok(l) => l,

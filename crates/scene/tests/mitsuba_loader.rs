@@ -53,6 +53,7 @@ fn defaults_substitution_and_defines() {
     assert_eq!(l.description.integrator.kind, IntegratorKind::Path);
     let opts = LoadOptions {
         defines: vec![("spp".into(), "11".into()), ("integrator".into(), "direct".into())],
+        ..LoadOptions::default()
     };
     let l = load_with(&p, &opts).unwrap();
     assert_eq!(l.description.sampler.samples_per_pixel, 11);
