@@ -90,12 +90,7 @@ impl LightPathIntegrator {
             }
         }
 
-        let cos = if les.intr.n == Vec3::ZERO {
-            1.0
-        } else {
-            les.intr.n.dot(les.ray.d).abs()
-        };
-        let mut beta = les.le * (cos / (pmf * les.pdf_pos * les.pdf_dir));
+        let mut beta = les.initial_throughput(pmf);
         let mut ray = les.ray;
         let mut depth = 0u32;
         loop {

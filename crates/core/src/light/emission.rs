@@ -50,6 +50,21 @@ pub struct LightLeSample {
     pub intr: Interaction,
 }
 
+impl LightLeSample {
+    /// The throughput the emitted ray starts with when the light was chosen with
+    /// probability `pmf`: `Le |cos| / (pmf pdf_pos pdf_dir)` (pbrt-v4's light subpath
+    /// start; no cosine for lights off surfaces, whose `intr.n` is zero).
+    #[must_use]
+    pub fn initial_throughput(&self, pmf: f32) -> Rgb {
+        let cos = if self.intr.n == Vec3::ZERO {
+            1.0
+        } else {
+            self.intr.n.dot(self.ray.d).abs()
+        };
+        self.le * (cos / (pmf * self.pdf_pos * self.pdf_dir))
+    }
+}
+
 impl Light {
     /// Sample a ray leaving the light from four uniform numbers: `u_pos` chooses the origin,
     /// `u_dir` the direction (some lights use only one of them). `None` when the sample

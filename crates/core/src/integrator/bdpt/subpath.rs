@@ -66,14 +66,7 @@ pub fn light_subpath(
         return;
     };
     let v0 = Vertex::light(scene, index as u32, les.intr, les.le, les.pdf_pos * pmf);
-    // Emitted flux leaving along the ray: Le |cos| / (p_light p_pos p_dir) (no cosine off
-    // surfaces).
-    let cos = if v0.is_on_surface() {
-        les.intr.n.dot(les.ray.d).abs()
-    } else {
-        1.0
-    };
-    let beta = les.le * (cos / (pmf * les.pdf_pos * les.pdf_dir));
+    let beta = les.initial_throughput(pmf);
     path.push(v0);
     random_walk(
         ctx,
