@@ -2,11 +2,11 @@
 //! render's state; `mcrender render --resume FILE [-o OUT]` continues it, to the same bytes
 //! as a render that was never stopped.
 //!
-//! File layout (version 1), chosen so that a reader needs nothing but this comment:
+//! File layout (version 2), chosen so that a reader needs nothing but this comment:
 //!
 //! ```text
 //! "MCRCKPT\n"                      8 bytes, magic
-//! version                          u32 little-endian (1)
+//! version                          u32 little-endian (2)
 //! header length                    u64 little-endian
 //! header                           UTF-8 JSON: format, version, binary, fingerprint, cwd,
 //!                                  args, output, samples_done, samples_per_pixel, width,
@@ -16,8 +16,8 @@
 //! ```
 //!
 //! The `film` section holds, per pixel in row-major order, `sum_w`, `sum_wl[3]`,
-//! `sum_wl2[3]` (f64) and `count` (u64), then per pixel the splat sums (3 f64), all little
-//! endian: the accumulators themselves, so the resumed render continues them exactly. A
+//! `sum_wl2[3]` (f64) and `count` (u64), then per pixel the splat sums (3 i128, fixed point
+//! in units of 2^-64, as `SplatSum` keeps them), all little endian: the accumulators themselves, so the resumed render continues them exactly. A
 //! JSON header keeps the file self-describing and easy to inspect; raw floats keep it small
 //! and exact (no decimal round trip). An integrator with per-pixel state of its own (SPPM's
 //! radii and photon counts) adds a section named after it; a reader refuses sections it
@@ -39,7 +39,7 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser};
-use mcrender_core::film::{Film, PixelStats};
+use mcrender_core::film::{Film, PixelStats, SplatSum};
 use mcrender_core::scene::SceneDescription;
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
@@ -48,9 +48,9 @@ use crate::builtin;
 use crate::render_cmd::RenderArgs;
 
 const MAGIC: &[u8; 8] = b"MCRCKPT\n";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 /// Bytes per pixel in the film section: 7 f64 + 1 u64 + 3 f64.
-const FILM_BYTES_PER_PIXEL: usize = 8 * 8 + 3 * 8;
+const FILM_BYTES_PER_PIXEL: usize = 8 * 8 + 3 * 16;
 
 /// The checkpoint flags of `mcrender render`.
 #[derive(Args, Debug, Default, Clone)]
@@ -353,7 +353,7 @@ pub fn write(path: &Path, fingerprint: &str, invocation: &Invocation, spp: u32, 
             out.write_all(&p.count.to_le_bytes())?;
         }
         for s in film.splat_sums() {
-            for x in s {
+            for x in s.to_fixed() {
                 out.write_all(&x.to_le_bytes())?;
             }
         }
@@ -502,11 +502,13 @@ fn read_film(data: &[u8], width: u32, height: u32, spp: u64) -> Result<Film, Str
             }
         })
         .collect();
+    let splats_at = 64 * n;
+    let fixed = |i: usize| {
+        let at = splats_at + 16 * i;
+        i128::from_le_bytes(data[at..at + 16].try_into().expect("16 bytes"))
+    };
     let splats = (0..n)
-        .map(|p| {
-            let b = 8 * n + 3 * p;
-            [float(b), float(b + 1), float(b + 2)]
-        })
+        .map(|p| SplatSum::from_fixed([fixed(3 * p), fixed(3 * p + 1), fixed(3 * p + 2)]))
         .collect();
     Film::from_parts(width, height, pixels, splats, spp).ok_or_else(|| "film of the wrong size".into())
 }

@@ -21,10 +21,11 @@ pub const MAX_SPP: u32 = 1 << 24;
 pub const MAX_LIGHT_SAMPLES: u32 = 4096;
 /// Most path depth accepted (Russian roulette ends paths long before).
 pub const MAX_DEPTH: u32 = 100_000;
-/// Bytes a film pixel costs while rendering and writing: the accumulator (64 bytes), its
-/// copy in the finished tile (64), and the mean and variance images written out (12 + 12),
-/// rounded up for the encoders' buffers. Measured: about 125 bytes a pixel (issue 10).
-pub const FILM_BYTES_PER_PIXEL: u64 = 160;
+/// Bytes a film pixel costs while rendering and writing: the accumulator (64 bytes) and its
+/// splat sum (48), the accumulator's copy in the finished tile (64), and the mean and
+/// variance images written out (12 + 12), rounded up for the encoders' buffers. Measured
+/// with 24-byte splat sums: about 125 bytes a pixel (issue 10).
+pub const FILM_BYTES_PER_PIXEL: u64 = 184;
 /// Share of physical memory a render may use by default.
 pub const DEFAULT_MEMORY_FRACTION: f64 = 0.75;
 

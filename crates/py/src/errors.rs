@@ -55,9 +55,10 @@ pub fn build_error(e: &BuildError) -> PyErr {
 /// A render that cannot run (an estimator that cannot see this scene's lights, no threads).
 pub fn render_error(e: &RenderError) -> PyErr {
     match e {
-        RenderError::Integrator(_) | RenderError::SampleRange { .. } | RenderError::FilmSize { .. } => {
-            PyValueError::new_err(e.to_string())
-        }
+        RenderError::Integrator(_)
+        | RenderError::SampleRange { .. }
+        | RenderError::FilmSize { .. }
+        | RenderError::Window { .. } => PyValueError::new_err(e.to_string()),
         RenderError::ThreadPool { .. } | RenderError::Cancelled { .. } => PyRuntimeError::new_err(e.to_string()),
     }
 }

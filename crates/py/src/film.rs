@@ -1,11 +1,13 @@
-//! `mcrender.Film`: the per-pixel sums of a render of some sample range (weights, weighted
-//! radiance and its square, sample counts and splat sums, in `f64`). Films of consecutive
-//! sample ranges merge (in sample order) into the film of their union, up to the rounding
-//! of the f64 additions' grouping; this is how `mcrender.distributed` assembles chunks
-//! rendered on Ray workers. Films pickle to a compact byte string.
+//! `mcrender.Film`: the per-pixel sums of a render of some sample range or window of the
+//! image (weights, weighted radiance and its square, sample counts in `f64`; splat sums in
+//! exact fixed point). Films of disjoint windows rendered with the same samples combine
+//! exactly (`combined`) into the film of the whole image, bit for bit: this is how
+//! `mcrender.distributed` assembles the bands rendered on Ray workers. Films of consecutive
+//! sample ranges merge (`merged`) into the film of their union up to the rounding of the f64
+//! additions' grouping. Films pickle to a compact byte string.
 
 use mcrender_core::color::Rgb;
-use mcrender_core::film::{Film, PixelStats};
+use mcrender_core::film::{Film, PixelStats, SplatSum};
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -13,9 +15,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
 /// Bytes of the header (width, height as little-endian u32, samples per pixel as u64) and
-/// of one pixel (seven f64 sums, a u64 count, three f64 splat sums).
+/// of one pixel (seven f64 sums, a u64 count, three i128 fixed-point splat sums).
 const HEADER: usize = 16;
-const PIXEL: usize = 88;
+const PIXEL: usize = 64 + 48;
 
 /// The accumulated samples of a render: `image()` is the estimate, `variance()` the
 /// estimated variance of each pixel's estimate.
@@ -48,7 +50,7 @@ impl PyFilm {
                 out.extend_from_slice(&v.to_le_bytes());
             }
             out.extend_from_slice(&p.count.to_le_bytes());
-            for v in splat {
+            for v in splat.to_fixed() {
                 out.extend_from_slice(&v.to_le_bytes());
             }
         }
@@ -78,7 +80,11 @@ impl PyFilm {
                 sum_wl2: [f(4), f(5), f(6)],
                 count: u64::from_le_bytes(word(at + 56)),
             });
-            splats.push([f(8), f(9), f(10)]);
+            let fixed = |k: usize| {
+                let b = at + 64 + 16 * k;
+                i128::from_le_bytes(bytes[b..b + 16].try_into().unwrap_or_default())
+            };
+            splats.push(SplatSum::from_fixed([fixed(0), fixed(1), fixed(2)]));
         }
         let film = Film::from_parts(width, height, pixels, splats, spp).ok_or_else(bad)?;
         Ok(film)
@@ -119,6 +125,17 @@ impl PyFilm {
         }
         let mut film = self.film.clone();
         film.merge(&other.film);
+        Ok(PyFilm { film })
+    }
+
+    /// A new film combining this one with `other`, a film of another window of the same
+    /// image rendered with the same samples (``Scene.render_film(window=...)``): each pixel
+    /// from the film that rendered it, splats added exactly. Combined in any order, the
+    /// films of windows covering the image give the bits of a film rendered whole.
+    fn combined(&self, other: &PyFilm) -> PyResult<PyFilm> {
+        let mut film = self.film.clone();
+        film.combine_disjoint(&other.film)
+            .map_err(|e| PyValueError::new_err(format!("Film.combined: {e}")))?;
         Ok(PyFilm { film })
     }
 

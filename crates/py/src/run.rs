@@ -11,9 +11,10 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Watch};
+use mcrender_core::integrator::sppm::{self, SppmSettings};
+use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Tile, Watch};
 use mcrender_core::scene::Scene;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
@@ -97,17 +98,75 @@ impl Progress {
     }
 }
 
-/// Render the sample indices `samples` of every pixel of `scene`, off the GIL, with
-/// progress and cancellation as the module doc says.
+/// Render the sample indices `samples` of the pixels of `window` (default: all) of
+/// `scene`, off the GIL, with progress and cancellation as the module doc says.
 pub fn render_range(
     py: Python<'_>,
     scene: &Scene,
     opts: &RenderOptions,
     samples: Range<u32>,
+    window: Option<Tile>,
     progress: &mut Progress,
 ) -> PyResult<RenderOutput> {
-    let pixels = u64::from(scene.film.width) * u64::from(scene.film.height);
+    let pixels = window.map_or(u64::from(scene.film.width) * u64::from(scene.film.height), |w| {
+        w.pixel_count()
+    });
     let total = pixels * u64::from(samples.end - samples.start);
+    run_off_gil(py, total, progress, |done, cancel| {
+        render_session(scene, opts, samples, window, done, cancel)
+    })
+}
+
+/// Render `scene` with SPPM (its own driver: iterations of camera and photon passes),
+/// off the GIL, progress counted in iterations, cancellable between passes (a cancelled
+/// render raises, like the others, rather than returning the iterations done).
+pub fn render_sppm(
+    py: Python<'_>,
+    scene: &Scene,
+    threads: Option<usize>,
+    progress: &ProgressArg,
+) -> PyResult<RenderOutput> {
+    let settings = SppmSettings::from_scene(scene);
+    let total = u64::from(settings.iterations);
+    let mut progress = Progress::from_arg(py, progress, total, "mcrender (sppm)")?;
+    run_off_gil(py, total, &mut progress, |done, cancel| {
+        let start = Instant::now();
+        let report = |n: u64, _total: u64| {
+            done.fetch_max(n, Ordering::Relaxed);
+        };
+        let (out, threads) =
+            sppm::render_with_threads(scene, &settings, threads, &report, cancel).map_err(|source| {
+                RenderError::ThreadPool {
+                    threads: threads.unwrap_or(0),
+                    source,
+                }
+            })?;
+        if out.iterations < settings.iterations {
+            return Err(RenderError::Cancelled {
+                samples_done: u64::from(out.iterations),
+            });
+        }
+        Ok(RenderOutput {
+            film: out.film,
+            stats: RenderStats {
+                elapsed: start.elapsed(),
+                paths: out.photons,
+                trace: out.trace,
+                threads,
+                ..Default::default()
+            },
+        })
+    })
+}
+
+/// Run `render(done, cancel)` on a thread of its own with the GIL released; meanwhile
+/// poll Python's signals and report `done` of `total` every [`POLL`]. An exception from
+/// either (KeyboardInterrupt, a failing progress callback) sets `cancel` and is raised once
+/// the render has stopped.
+fn run_off_gil<F>(py: Python<'_>, total: u64, progress: &mut Progress, render: F) -> PyResult<RenderOutput>
+where
+    F: FnOnce(&AtomicU64, &AtomicBool) -> Result<RenderOutput, RenderError> + Send,
+{
     let done = AtomicU64::new(0);
     let cancel = AtomicBool::new(false);
     let (result, interrupted) = py.detach(|| {
@@ -115,7 +174,7 @@ pub fn render_range(
             let (finished_tx, finished) = mpsc::channel::<()>();
             let (done, cancel) = (&done, &cancel);
             let worker = s.spawn(move || {
-                let r = render_session(scene, opts, samples, done, cancel);
+                let r = render(done, cancel);
                 // The receiver may be gone only if the waiting loop panicked.
                 let _ = finished_tx.send(());
                 r
@@ -158,11 +217,15 @@ fn render_session(
     scene: &Scene,
     opts: &RenderOptions,
     samples: Range<u32>,
+    window: Option<Tile>,
     done: &AtomicU64,
     cancel: &AtomicBool,
 ) -> Result<RenderOutput, RenderError> {
-    let pixels = u64::from(scene.film.width) * u64::from(scene.film.height);
     let mut session = RenderSession::new(scene, opts)?;
+    if let Some(window) = window {
+        session.set_window(window)?;
+    }
+    let pixels: u64 = session.tiles().iter().map(Tile::pixel_count).sum();
     let mut stats = RenderStats {
         threads: session.threads(),
         ..Default::default()

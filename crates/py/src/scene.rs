@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use mcrender_core::render::{RenderOptions, RenderOutput};
+use mcrender_core::render::{RenderOptions, RenderOutput, Tile};
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, Scene, SceneDescription};
 use numpy::PyArray3;
 use pyo3::exceptions::PyValueError;
@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 
 use crate::errors::{build_error, scene_error};
 use crate::film::{rgb_array, Image, PyFilm};
-use crate::run::{render_range, Progress, ProgressArg};
+use crate::run::{render_range, render_sppm, Progress, ProgressArg};
 
 /// A scene loaded from a file, ready to render.
 #[pyclass(name = "Scene", module = "mcrender")]
@@ -25,11 +25,12 @@ pub struct PyScene {
     warnings: Vec<String>,
 }
 
-/// Load a pbrt-v4 scene file (and the files it includes or references).
+/// Load a scene file (pbrt-v4, or Mitsuba 3 XML, by its extension) and the files it
+/// includes or references.
 #[pyfunction]
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
     let loaded = py
-        .detach(|| mcrender_scene::load_file(&path))
+        .detach(|| mcrender_scene::load(&path))
         .map_err(|e| scene_error(py, &e))?;
     Ok(PyScene {
         desc: loaded.description,
@@ -59,9 +60,15 @@ pub fn parse_technique(name: &str) -> PyResult<DirectStrategy> {
         })
 }
 
+/// A window `(x0, y0, x1, y1)` of pixels `[x0, x1) x [y0, y1)` as a tile.
+fn window_tile(window: (u32, u32, u32, u32)) -> Tile {
+    let (x0, y0, x1, y1) = window;
+    Tile { x0, y0, x1, y1 }
+}
+
 impl PyScene {
     /// Build the scene with the per-call overrides and render `start..end` (default
-    /// `0..spp`).
+    /// `0..spp`) of the pixels of `window` (default: all).
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
@@ -72,6 +79,7 @@ impl PyScene {
         seed: Option<u64>,
         threads: Option<usize>,
         progress: &ProgressArg,
+        window: Option<Tile>,
     ) -> PyResult<RenderOutput> {
         let mut desc = self.desc.clone();
         if let Some(spp) = spp {
@@ -83,6 +91,12 @@ impl PyScene {
         if threads == Some(0) {
             return Err(PyValueError::new_err("threads: expected at least 1, found 0"));
         }
+        let whole = start == 0 && end.is_none() && window.is_none();
+        if desc.integrator.kind == IntegratorKind::Sppm && !whole {
+            return Err(PyValueError::new_err(
+                "sppm renders in iterations of camera and photon passes over the whole image: sample ranges and windows are not available",
+            ));
+        }
         let end = end.unwrap_or(desc.sampler.samples_per_pixel);
         if start >= end {
             return Err(PyValueError::new_err(format!(
@@ -90,13 +104,18 @@ impl PyScene {
             )));
         }
         let scene = py.detach(|| Scene::build(&desc)).map_err(|e| build_error(&e))?;
-        let pixels = u64::from(desc.film.width) * u64::from(desc.film.height);
+        if desc.integrator.kind == IntegratorKind::Sppm {
+            return render_sppm(py, &scene, threads, progress);
+        }
+        let pixels = window.map_or(u64::from(desc.film.width) * u64::from(desc.film.height), |w| {
+            w.pixel_count()
+        });
         let mut progress = Progress::from_arg(py, progress, pixels * u64::from(end - start), "mcrender")?;
         let opts = RenderOptions {
             threads,
             ..Default::default()
         };
-        render_range(py, &scene, &opts, start..end, &mut progress)
+        render_range(py, &scene, &opts, start..end, window, &mut progress)
     }
 }
 
@@ -112,7 +131,7 @@ impl PyScene {
         threads: Option<usize>,
         progress: ProgressArg,
     ) -> PyResult<Bound<'py, PyArray3<f32>>> {
-        let out = self.run(py, 0, None, spp, seed, threads, &progress)?;
+        let out = self.run(py, 0, None, spp, seed, threads, &progress, None)?;
         let (w, h) = (out.film.width(), out.film.height());
         rgb_array(py, w, h, &out.film.mean_image())
     }
@@ -128,7 +147,7 @@ impl PyScene {
         threads: Option<usize>,
         progress: ProgressArg,
     ) -> PyResult<(Image<'py>, Image<'py>)> {
-        let out = self.run(py, 0, None, spp, seed, threads, &progress)?;
+        let out = self.run(py, 0, None, spp, seed, threads, &progress, None)?;
         let (w, h) = (out.film.width(), out.film.height());
         Ok((
             rgb_array(py, w, h, &out.film.mean_image())?,
@@ -148,14 +167,18 @@ impl PyScene {
         threads: Option<usize>,
         progress: ProgressArg,
     ) -> PyResult<Bound<'py, PyArray3<f32>>> {
-        let out = self.run(py, start, Some(end), None, seed, threads, &progress)?;
+        let out = self.run(py, start, Some(end), None, seed, threads, &progress, None)?;
         let (w, h) = (out.film.width(), out.film.height());
         rgb_array(py, w, h, &out.film.mean_image())
     }
 
-    /// Render the sample indices `start..end` (default: all) and return the film, whose
-    /// sums merge with films of the following ranges (`Film.merged`).
-    #[pyo3(signature = (start=0, end=None, seed=None, threads=None, progress=ProgressArg::Flag(false)))]
+    /// Render the sample indices `start..end` (default: all) of the pixels of `window`
+    /// (`(x0, y0, x1, y1)`, pixels `[x0, x1) x [y0, y1)`; default: the whole image) and
+    /// return the film. Films of the following sample ranges merge into it
+    /// (`Film.merged`, up to rounding); films of disjoint windows with the same samples
+    /// combine exactly (`Film.combined`).
+    #[pyo3(signature = (start=0, end=None, seed=None, threads=None, progress=ProgressArg::Flag(false), window=None))]
+    #[allow(clippy::too_many_arguments)]
     fn render_film(
         &self,
         py: Python<'_>,
@@ -164,8 +187,9 @@ impl PyScene {
         seed: Option<u64>,
         threads: Option<usize>,
         progress: ProgressArg,
+        window: Option<(u32, u32, u32, u32)>,
     ) -> PyResult<PyFilm> {
-        let out = self.run(py, start, end, None, seed, threads, &progress)?;
+        let out = self.run(py, start, end, None, seed, threads, &progress, window.map(window_tile))?;
         Ok(PyFilm { film: out.film })
     }
 
@@ -228,7 +252,7 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "bdpt", "lightpath" (or "sppm", read only).
+    /// The integrator: "path", "direct", "bdpt", "lightpath" or "sppm".
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -247,9 +271,10 @@ impl PyScene {
             "direct" => IntegratorKind::Direct,
             "bdpt" => IntegratorKind::Bdpt,
             "lightpath" => IntegratorKind::LightPath,
+            "sppm" => IntegratorKind::Sppm,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\" or \"sppm\", found \"{value}\""
                 )))
             }
         };

@@ -228,12 +228,54 @@ def test_pi_equals_the_cli_json(cli):
     assert mcrender.pi([10, 1000], seed=4, trials=20) == json.loads(done.stdout)
 
 
-def test_light_tracing_equals_the_cli_and_sppm_is_refused(cli, scene_path, tmp_path):
+def test_light_tracing_and_sppm_equal_the_cli(cli, scene_path, tmp_path):
     out = tmp_path / "lightpath.exr"
     run_cli(cli, "render", scene_path, "--integrator", "lightpath", "--spp", 2, "--resolution", "32x24", "-o", out, "-q")
     scene = mcrender.load(scene_path)
     scene.integrator = "lightpath"
     scene.resolution = (32, 24)
     assert scene.render(spp=2, progress=False).tobytes() == mcrender.read_image(out).tobytes()
+    # SPPM runs its own driver (iterations of camera and photon passes).
+    out = tmp_path / "sppm.exr"
+    run_cli(cli, "render", scene_path, "--integrator", "sppm", "--resolution", "32x24", "-o", out, "-q")
+    scene.integrator = "sppm"
+    assert scene.integrator == "sppm"
+    calls = []
+    image = scene.render(progress=lambda done, total: calls.append((done, total)))
+    assert image.tobytes() == mcrender.read_image(out).tobytes()
+    assert calls and calls[-1][0] == calls[-1][1]
+    assert float(image.mean()) > 0
+    with pytest.raises(ValueError, match="sppm"):
+        scene.render_film(0, 1)
+    with pytest.raises(ValueError, match="sppm"):
+        scene.render_film(window=(0, 0, 8, 8))
     with pytest.raises(ValueError):
-        scene.integrator = "sppm"  # its own driver, not run from Python yet
+        scene.integrator = "photon"
+
+
+@pytest.mark.parametrize("integrator", ["path", "bdpt", "lightpath"])
+def test_windows_combine_into_the_whole_render_bit_for_bit(scene_path, integrator):
+    """Disjoint windows (any shapes, combined in any order) give the whole image's bits,
+    also for the integrators whose splats land outside the window that made them."""
+    scene = mcrender.load(scene_path)
+    scene.integrator = integrator
+    scene.resolution = (40, 30)
+    scene.seed = 3
+    whole = scene.render_film(0, 4)
+    windows = [(0, 0, 40, 7), (0, 7, 13, 30), (13, 7, 40, 19), (13, 19, 40, 30)]
+    films = [scene.render_film(0, 4, window=w) for w in windows]
+    for order in ([0, 1, 2, 3], [3, 1, 0, 2]):
+        film = films[order[0]]
+        for i in order[1:]:
+            film = film.combined(films[i])
+        assert film == whole
+        assert film.image().tobytes() == whole.image().tobytes()
+        assert film.variance().tobytes() == whole.variance().tobytes()
+    if integrator != "path":
+        # The splats of one window reach pixels outside it.
+        outside = films[0].image()[7:]
+        assert float(outside.sum()) > 0
+    with pytest.raises(ValueError, match="both"):
+        films[0].combined(films[0])
+    with pytest.raises(ValueError, match="window"):
+        scene.render_film(0, 4, window=(0, 0, 41, 5))

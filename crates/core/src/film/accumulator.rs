@@ -6,11 +6,11 @@
 //! samples' own spread: with `n` samples, `Var[mean] ~= s^2 / n` where `s^2` is the unbiased
 //! sample variance of the `w L / mean(w)` values.
 //!
-//! Beside the samples, each pixel has a splat sum ([`super::Splat`]); the displayed value is
-//! `mean + splat_sum / spp` with `spp` the samples per pixel of the whole film. The variance
-//! covers the pixel's own samples only.
+//! Beside the samples, each pixel has a splat sum ([`super::Splat`], kept exactly and in any
+//! order by [`SplatSum`]); the displayed value is `mean + splat_sum / spp` with `spp` the
+//! samples per pixel of the whole film. The variance covers the pixel's own samples only.
 
-use super::Splat;
+use super::{Splat, SplatSum};
 use crate::color::Rgb;
 
 /// Running sums for one pixel, in `f64` so long renders do not lose precision.
@@ -86,8 +86,9 @@ pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<PixelStats>,
-    /// Sum of the splats landing in each pixel, per channel, in `f64` like the samples.
-    splats: Vec<[f64; 3]>,
+    /// Sum of the splats landing in each pixel (fixed point: the order they land in does
+    /// not matter).
+    splats: Vec<SplatSum>,
     /// Samples per pixel rendered (sample indices, counting dropped non-finite samples).
     samples_per_pixel: u64,
 }
@@ -101,7 +102,7 @@ impl Film {
             width,
             height,
             pixels: vec![PixelStats::default(); n],
-            splats: vec![[0.0; 3]; n],
+            splats: vec![SplatSum::ZERO; n],
             samples_per_pixel: 0,
         }
     }
@@ -113,7 +114,7 @@ impl Film {
         width: u32,
         height: u32,
         pixels: Vec<PixelStats>,
-        splats: Vec<[f64; 3]>,
+        splats: Vec<SplatSum>,
         samples_per_pixel: u64,
     ) -> Option<Self> {
         let n = (width as usize).checked_mul(height as usize)?;
@@ -157,7 +158,7 @@ impl Film {
 
     /// All splat sums, row-major.
     #[must_use]
-    pub fn splat_sums(&self) -> &[[f64; 3]] {
+    pub fn splat_sums(&self) -> &[SplatSum] {
         &self.splats
     }
 
@@ -172,25 +173,19 @@ impl Film {
         self.samples_per_pixel += n;
     }
 
-    /// Add a splat to the pixel containing its position. Splats outside the image or with
-    /// a non-finite value are dropped (returns `false`).
+    /// Add a splat to the pixel containing its position. Splats outside the image, or with
+    /// a non-finite or huge value ([`SplatSum::add`]), are dropped (returns `false`). The
+    /// order splats are added in does not change the film.
     pub fn add_splat(&mut self, s: &Splat) -> bool {
         let (x, y) = (s.p_film.x.floor(), s.p_film.y.floor());
         let inside = x >= 0.0 && y >= 0.0 && x < self.width as f32 && y < self.height as f32;
-        if !inside || !s.l.is_finite() {
-            return false;
-        }
-        let sum = &mut self.splats[y as usize * self.width as usize + x as usize];
-        for (c, v) in sum.iter_mut().enumerate() {
-            *v += f64::from(s.l[c]);
-        }
-        true
+        inside && self.splats[y as usize * self.width as usize + x as usize].add(s.l)
     }
 
     /// Add another film's samples of the same image (e.g. a later wave of samples): the
-    /// accumulators, splat sums and sample counts add. (Floating-point addition does not
-    /// associate, so this equals a single render up to rounding; the render session
-    /// continues a film instead, which is exact.)
+    /// accumulators, splat sums and sample counts add. (The pixels' floating-point sums do
+    /// not associate, so this equals a single render up to rounding; the render session
+    /// continues a film instead, which is exact. The splat sums add exactly.)
     ///
     /// # Panics
     /// When the sizes differ.
@@ -204,11 +199,45 @@ impl Film {
             a.merge(b);
         }
         for (a, b) in self.splats.iter_mut().zip(&other.splats) {
-            for c in 0..3 {
-                a[c] += b[c];
-            }
+            a.merge(b);
         }
         self.samples_per_pixel += other.samples_per_pixel;
+    }
+
+    /// Combine the film of another part of the same image rendered with the same samples
+    /// (e.g. other tiles, rendered on another machine): each pixel takes the samples of the
+    /// one film that rendered it, and the splat sums add. Exact, in any order: the result
+    /// has the bits of a film rendered whole.
+    ///
+    /// # Errors
+    /// When the sizes or the samples per pixel differ, or a pixel was rendered in both.
+    pub fn combine_disjoint(&mut self, other: &Self) -> Result<(), String> {
+        if (self.width, self.height) != (other.width, other.height) {
+            return Err(format!(
+                "films of different sizes ({}x{} and {}x{})",
+                self.width, self.height, other.width, other.height
+            ));
+        }
+        if self.samples_per_pixel != other.samples_per_pixel {
+            return Err(format!(
+                "films of different sample counts ({} and {} per pixel)",
+                self.samples_per_pixel, other.samples_per_pixel
+            ));
+        }
+        let empty = PixelStats::default();
+        if let Some(i) = (0..self.pixels.len()).find(|&i| self.pixels[i] != empty && other.pixels[i] != empty) {
+            let w = self.width as usize;
+            return Err(format!("pixel ({}, {}) was rendered in both films", i % w, i / w));
+        }
+        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
+            if *b != empty {
+                *a = *b;
+            }
+        }
+        for (a, b) in self.splats.iter_mut().zip(&other.splats) {
+            a.merge(b);
+        }
+        Ok(())
     }
 
     /// The estimate of every pixel: the mean of its samples plus its splats over the spp.
@@ -219,9 +248,10 @@ impl Film {
             .iter()
             .zip(&self.splats)
             .map(|(p, s)| {
-                if *s == [0.0; 3] || spp == 0.0 {
+                if s.is_zero() || spp == 0.0 {
                     return p.mean();
                 }
+                let s = s.to_f64();
                 let m = |c: usize| {
                     let mean = if p.sum_w == 0.0 { 0.0 } else { p.sum_wl[c] / p.sum_w };
                     (mean + s[c] / spp) as f32

@@ -4,6 +4,7 @@ mod accumulator;
 mod compare;
 mod filter;
 mod splat;
+mod splat_sum;
 mod statistics;
 
 pub use accumulator::{Film, PixelStats};
@@ -12,4 +13,5 @@ pub use compare::{
 };
 pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
 pub use splat::Splat;
+pub use splat_sum::{SplatSum, MAX_SPLAT};
 pub use statistics::{FilmStatistics, REL_MSE_EPSILON};

@@ -9,12 +9,15 @@
 //! bit-identical to one pass, whatever the number of threads or the order tiles finish in.
 //!
 //! Splats (light-tracing contributions to arbitrary pixels, [`crate::film::Splat`]) are
-//! collected per tile in the order the integrator makes them, tagged with the pixel whose
-//! sample made them, and added to the film's splat sums only after the wave, on one thread,
-//! in row-major order of that pixel. When the integrator splats, a wave is one sample index,
-//! so the order of additions to a splat sum is (sample index, pixel, order made): the same
-//! for any thread count, tile size, or split of the render into ranges, and the memory held
-//! is one sample per pixel's worth of splats.
+//! collected per tile and added to the film after the wave. The film keeps splat sums in
+//! fixed point ([`crate::film::SplatSum`]), where addition associates, so the order splats
+//! arrive in does not matter: any thread count, tile size, split of the render into sample
+//! ranges or image windows (rendered on other machines and combined with
+//! [`Film::combine_disjoint`]) gives the same bits. When the integrator splats, a wave is
+//! one sample index, which bounds the memory held to one sample per pixel's worth of splats.
+//!
+//! A session can render a window of the image only ([`RenderSession::set_window`]); the
+//! other pixels keep empty accumulators, and the splats of the window's paths land anywhere.
 //!
 //! Cancellation: the observer's flag ([`RenderObserver::cancel_flag`]) is checked before
 //! every work unit (a tile of a wave); a cancelled wave is dropped whole, so the film always
@@ -27,7 +30,7 @@ mod waves;
 
 pub use observer::{is_cancelled, ProgressFn, RenderObserver, Watch};
 pub use session::RenderSession;
-pub use tiles::{tiles, Tile};
+pub use tiles::{tiles, tiles_within, Tile};
 pub use waves::doubling_waves;
 
 use std::ops::Range;
@@ -108,6 +111,14 @@ pub enum RenderError {
         next: u32,
         /// The range asked for.
         found: Range<u32>,
+    },
+    /// A window that is empty or not inside the image.
+    #[error("window [{}, {}) x [{}, {}) is empty or not inside the {}x{} image", window.x0, window.x1, window.y0, window.y1, size.0, size.1)]
+    Window {
+        /// The window asked for.
+        window: Tile,
+        /// The image size.
+        size: (u32, u32),
     },
     /// A film of another size than the scene's.
     #[error("film of {}x{} for a {}x{} image", found.0, found.1, expected.0, expected.1)]

@@ -8,7 +8,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::{
-    doubling_waves, is_cancelled, tiles, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats, Tile,
+    doubling_waves, is_cancelled, tiles_within, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats,
+    Tile,
 };
 use crate::film::{Film, PixelStats, Splat};
 use crate::integrator::{Integrator, TraceStats};
@@ -34,8 +35,6 @@ pub struct RenderSession<'s> {
 struct TileResult {
     pixels: Vec<PixelStats>,
     splats: Vec<Splat>,
-    /// `splats[starts[i]..starts[i + 1]]` came from the tile's `i`-th pixel.
-    starts: Vec<usize>,
     trace: TraceStats,
     nonfinite: u64,
 }
@@ -84,7 +83,15 @@ impl<'s> RenderSession<'s> {
             pool,
             threads,
             tile_size,
-            tiles: tiles(scene.film.width, scene.film.height, tile_size),
+            tiles: tiles_within(
+                Tile {
+                    x0: 0,
+                    y0: 0,
+                    x1: scene.film.width,
+                    y1: scene.film.height,
+                },
+                tile_size,
+            ),
             film,
             next_sample,
         })
@@ -114,10 +121,22 @@ impl<'s> RenderSession<'s> {
         self.threads
     }
 
-    /// The tiles, in the order splats are added (row-major grid).
+    /// The tiles rendered, row by row.
     #[must_use]
     pub fn tiles(&self) -> &[Tile] {
         &self.tiles
+    }
+
+    /// Render only the pixels of `window` from now on (e.g. one machine's share of the
+    /// image); the other pixels' accumulators are left as they are. The splats of the
+    /// window's paths still land on any pixel.
+    pub fn set_window(&mut self, window: Tile) -> Result<(), RenderError> {
+        let size = (self.film.width(), self.film.height());
+        if window.x0 >= window.x1 || window.y0 >= window.y1 || window.x1 > size.0 || window.y1 > size.1 {
+            return Err(RenderError::Window { window, size });
+        }
+        self.tiles = tiles_within(window, self.tile_size);
+        Ok(())
     }
 
     /// The film so far: every completed wave, nothing of a cancelled one.
@@ -188,7 +207,7 @@ impl<'s> RenderSession<'s> {
             }
         }
         let start = Instant::now();
-        let pixels = u64::from(self.film.width()) * u64::from(self.film.height());
+        let pixels: u64 = self.tiles.iter().map(Tile::pixel_count).sum();
         let total = pixels * u64::from(range.end.saturating_sub(range.start));
         let done = AtomicU64::new(0);
         let mut stats = RenderStats {
@@ -237,8 +256,8 @@ impl<'s> RenderSession<'s> {
         Ok(total)
     }
 
-    /// One wave: every tile renders `samples`, then the results are committed in tile
-    /// order (pixels) and row-major pixel order (splats), or dropped if cancelled.
+    /// One wave: every tile renders `samples`, then the results are committed (pixels and
+    /// splats), or dropped if cancelled.
     fn wave(
         &mut self,
         samples: Range<u32>,
@@ -289,36 +308,17 @@ impl<'s> RenderSession<'s> {
             stats.trace += r.trace;
             stats.nonfinite_samples += r.nonfinite;
         }
-        stats.dropped_splats += commit_splats(&mut self.film, &self.tiles, self.tile_size, &results);
+        stats.dropped_splats += commit_splats(&mut self.film, &results);
         self.film.add_samples_per_pixel(n);
         Ok(())
     }
 }
 
-/// Add a wave's splats to the film in row-major order of the pixel whose sample made them
-/// (then in the order made), so the sums depend neither on the thread count nor on the tile
-/// size. `tiles` are [`tiles`]`(w, h, tile_size)`, `results` theirs in the same order.
-/// Returns the number dropped (outside the image or not finite).
-fn commit_splats(film: &mut Film, tiles: &[Tile], tile_size: u32, results: &[TileResult]) -> u64 {
-    if results.iter().all(|r| r.splats.is_empty()) {
-        return 0;
-    }
-    let (w, h) = (film.width(), film.height());
-    let tiles_x = w.div_ceil(tile_size);
-    let mut dropped = 0;
-    for y in 0..h {
-        for x in 0..w {
-            let t = ((y / tile_size) * tiles_x + x / tile_size) as usize;
-            let (tile, r) = (&tiles[t], &results[t]);
-            let i = ((y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0)) as usize;
-            for s in &r.splats[r.starts[i]..r.starts[i + 1]] {
-                if !film.add_splat(s) {
-                    dropped += 1;
-                }
-            }
-        }
-    }
-    dropped
+/// Add a wave's splats to the film (in any order: the film's splat sums are exact).
+/// Returns the number dropped (outside the image, not finite or huge).
+fn commit_splats(film: &mut Film, results: &[TileResult]) -> u64 {
+    let splats = results.iter().flat_map(|r| &r.splats);
+    splats.map(|s| u64::from(!film.add_splat(s))).sum()
 }
 
 /// Continue the tile's accumulators (`pixels`, in tile order) with the given samples.
@@ -333,9 +333,7 @@ fn render_tile(
     let mut trace = TraceStats::default();
     let mut nonfinite = 0;
     let mut splats = Vec::new();
-    let mut starts = Vec::with_capacity(pixels.len() + 1);
     for (i, acc) in pixels.iter_mut().enumerate() {
-        starts.push(splats.len());
         let (x, y) = tile.pixel_at(i);
         let pixel = UVec2::new(x, y);
         for s in samples.clone() {
@@ -353,11 +351,9 @@ fn render_tile(
             }
         }
     }
-    starts.push(splats.len());
     TileResult {
         pixels,
         splats,
-        starts,
         trace,
         nonfinite,
     }
@@ -369,7 +365,7 @@ mod tests {
     use crate::color::Rgb;
 
     /// Splats made by each pixel's sample, deterministic in (pixel, k) and landing far from
-    /// the pixel, with magnitudes spread so that the order of additions shows in the bits.
+    /// the pixel, with magnitudes spread so that the order of float additions would show.
     fn splats_of(x: u32, y: u32, w: u32, h: u32) -> Vec<Splat> {
         (0..3)
             .map(|k| {
@@ -382,34 +378,40 @@ mod tests {
             .collect()
     }
 
-    fn splat_film(w: u32, h: u32, tile_size: u32) -> Film {
-        let tile_list = tiles(w, h, tile_size);
-        let results: Vec<TileResult> = tile_list
-            .iter()
-            .map(|t| {
-                let (mut splats, mut starts) = (Vec::new(), Vec::new());
-                for i in 0..t.pixel_count() as usize {
-                    starts.push(splats.len());
+    /// The film of committing every pixel's splats, the tiles' results listed in `order`.
+    fn splat_film(w: u32, h: u32, tile_size: u32, reverse: bool) -> Film {
+        let mut results: Vec<TileResult> = tiles_within(
+            Tile {
+                x0: 0,
+                y0: 0,
+                x1: w,
+                y1: h,
+            },
+            tile_size,
+        )
+        .iter()
+        .map(|t| TileResult {
+            pixels: vec![PixelStats::default(); t.pixel_count() as usize],
+            splats: (0..t.pixel_count() as usize)
+                .flat_map(|i| {
                     let (x, y) = t.pixel_at(i);
-                    splats.extend(splats_of(x, y, w, h));
-                }
-                starts.push(splats.len());
-                TileResult {
-                    pixels: vec![PixelStats::default(); t.pixel_count() as usize],
-                    splats,
-                    starts,
-                    trace: TraceStats::default(),
-                    nonfinite: 0,
-                }
-            })
-            .collect();
+                    splats_of(x, y, w, h)
+                })
+                .collect(),
+            trace: TraceStats::default(),
+            nonfinite: 0,
+        })
+        .collect();
+        if reverse {
+            results.reverse();
+        }
         let mut film = Film::new(w, h);
-        assert_eq!(commit_splats(&mut film, &tile_list, tile_size, &results), 0);
+        assert_eq!(commit_splats(&mut film, &results), 0);
         film
     }
 
     #[test]
-    fn splats_are_added_in_row_major_pixel_order_whatever_the_tile_size() {
+    fn splat_sums_do_not_depend_on_tile_size_or_order() {
         let (w, h) = (11, 7);
         let mut reference = Film::new(w, h);
         for y in 0..h {
@@ -420,9 +422,14 @@ mod tests {
             }
         }
         for ts in [1, 3, 4, 16] {
-            let film = splat_film(w, h, ts);
-            let bits = |f: &Film| f.splat_sums().iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&film), bits(&reference), "tile size {ts}");
+            for reverse in [false, true] {
+                let film = splat_film(w, h, ts, reverse);
+                assert_eq!(
+                    film.splat_sums(),
+                    reference.splat_sums(),
+                    "tile size {ts}, reversed {reverse}"
+                );
+            }
         }
     }
 }

@@ -31,14 +31,29 @@ impl Tile {
 /// Tiles of side `size` covering a `width x height` image, row by row.
 #[must_use]
 pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    tiles_within(
+        Tile {
+            x0: 0,
+            y0: 0,
+            x1: width,
+            y1: height,
+        },
+        size,
+    )
+}
+
+/// Tiles of side `size` covering the pixels of `window`, row by row from its corner.
+#[must_use]
+pub fn tiles_within(window: Tile, size: u32) -> Vec<Tile> {
+    let size = size.max(1);
     let mut v = Vec::new();
-    for y0 in (0..height).step_by(size as usize) {
-        for x0 in (0..width).step_by(size as usize) {
+    for y0 in (window.y0..window.y1).step_by(size as usize) {
+        for x0 in (window.x0..window.x1).step_by(size as usize) {
             v.push(Tile {
                 x0,
                 y0,
-                x1: (x0 + size).min(width),
-                y1: (y0 + size).min(height),
+                x1: x0.saturating_add(size).min(window.x1),
+                y1: y0.saturating_add(size).min(window.y1),
             });
         }
     }
@@ -60,5 +75,20 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&c| c == 1));
+    }
+
+    #[test]
+    fn tiles_within_cover_the_window_only() {
+        let window = Tile {
+            x0: 3,
+            y0: 5,
+            x1: 20,
+            y1: 9,
+        };
+        let covered: u64 = tiles_within(window, 8).iter().map(Tile::pixel_count).sum();
+        assert_eq!(covered, 17 * 4);
+        for t in tiles_within(window, 8) {
+            assert!(t.x0 >= 3 && t.x1 <= 20 && t.y0 >= 5 && t.y1 <= 9 && t.x0 < t.x1 && t.y0 < t.y1);
+        }
     }
 }

@@ -1,20 +1,18 @@
 """Rendering one scene across a Ray cluster.
 
-``render(scene_path, spp, seed, address, chunks)`` cuts the samples per pixel into
-consecutive ranges (chunks), renders each as a Ray task, and merges the chunks' per-pixel
-sums in sample order, so the image is the one a single-process ``Scene.render`` gives for
-the same scene, seed and spp: every sample is the same (it depends on seed, pixel and
-sample index only), and the float32 image and variance come out bit-identical. (The f64
-sums behind them are added in a different grouping, chunk by chunk, so their last bits
-can differ; such a difference changes a float32 value only if it straddles a float32
-rounding boundary, about 1 in 10^8 values. Measured: 0 of 213,504 image and variance
-values differ on the occluder, 160x120 at 64 spp in 4 chunks, and the Cornell box, 128x128
-at 32 spp in 4 chunks, while 20-25% of the f64 sums do.) Workers need no shared file system: the scene file and every
-file it references (``Include``/``Import``, PLY meshes, image textures and environment
-maps: every quoted string in the scene files that names an existing file) travel through
-Ray's object store once, and each worker writes them into a temporary directory and loads
-the scene from there. A worker that dies mid-task is retried by Ray (``max_retries``); a
-chunk's result depends only on its sample range, so the image stays the same.
+``render(scene_path, spp, seed, address, chunks)`` cuts the image into bands of rows
+(chunks), renders all samples of each band as a Ray task, and combines the bands' films
+exactly, so the image is bit for bit the one a single-process ``Scene.render`` gives for the
+same scene, seed and spp. Every sample depends on seed, pixel and sample index only; each
+pixel's samples are accumulated in index order by the one task that renders it; and the
+splats of light tracing and BDPT, which land on any pixel, are kept in exact fixed-point
+sums that add in any order (``Film.combined``). Workers need no shared file system: the
+scene file and every file it references (``Include``/``Import``, PLY and OBJ meshes, image
+textures and environment maps: every quoted string in the scene files that names an
+existing file) travel through Ray's object store once, and each worker writes them into a
+temporary directory and loads the scene from there. A worker that dies mid-task is retried
+by Ray (``max_retries``); a band's result depends only on the band, so the image stays the
+same. SPPM (photon passes over the whole image) cannot be split this way and is refused.
 
 From a shell::
 
@@ -42,13 +40,14 @@ Progress = Union[bool, None, Callable[[int, int], Any]]
 __all__ = ["render", "render_film", "scene_files", "main"]
 
 
-def _quoted_strings(text: str) -> List[str]:
-    """The quoted strings of a pbrt-v4 file, comments (``#`` to the end of the line) left out."""
+def _quoted_strings(text: str, hash_comments: bool = True) -> List[str]:
+    """The quoted strings of a scene file: a pbrt-v4 file's with comments (``#`` to the end
+    of the line) left out, or (``hash_comments=False``) an XML file's attribute values."""
     out: List[str] = []
     i, n = 0, len(text)
     while i < n:
         c = text[i]
-        if c == "#":
+        if c == "#" and hash_comments:
             j = text.find("\n", i)
             i = n if j < 0 else j
         elif c == '"':
@@ -70,7 +69,7 @@ def _scene_text(data: bytes) -> str:
 
 def _is_scene_file(path: Path) -> bool:
     name = path.name.lower()
-    return name.endswith(".pbrt") or name.endswith(".pbrt.gz")
+    return name.endswith((".pbrt", ".pbrt.gz", ".xml"))
 
 
 def scene_files(scene_path: PathLike) -> Tuple[Dict[str, bytes], str]:
@@ -92,7 +91,8 @@ def scene_files(scene_path: PathLike) -> Tuple[Dict[str, bytes], str]:
         found[path] = data
         if path != main and not _is_scene_file(path):
             continue
-        for name in _quoted_strings(_scene_text(data)):
+        xml = path.name.lower().endswith(".xml")
+        for name in _quoted_strings(_scene_text(data), hash_comments=not xml):
             if not name or "\n" in name:
                 continue
             for candidate in (search_dir / name, path.parent / name):
@@ -132,20 +132,22 @@ def _render_chunk(
     main: str,
     digest: str,
     settings: Dict[str, Any],
-    start: int,
-    end: int,
+    window: Tuple[int, int, int, int],
     threads: int,
 ) -> Film:
-    """A Ray task: render sample indices ``start..end`` of the shipped scene."""
+    """A Ray task: render every sample of the pixels of ``window`` of the shipped scene."""
     scene = _load_shipped(files, main, digest)
     for name, value in settings.items():
         setattr(scene, name, value)
-    return scene.render_film(start, end, threads=threads, progress=False)
+    return scene.render_film(threads=threads, progress=False, window=window)
 
 
-def _chunk_bounds(spp: int, chunks: int) -> List[Tuple[int, int]]:
-    bounds = [spp * i // chunks for i in range(chunks + 1)]
-    return [(a, b) for a, b in zip(bounds, bounds[1:]) if a < b]
+def _bands(width: int, height: int, chunks: int) -> List[Tuple[int, int, int, int]]:
+    """``chunks`` windows ``(x0, y0, x1, y1)`` of whole rows covering the image (fewer if
+    the image has fewer rows)."""
+    chunks = max(1, min(chunks, height))
+    rows = [height * i // chunks for i in range(chunks + 1)]
+    return [(0, a, width, b) for a, b in zip(rows, rows[1:]) if a < b]
 
 
 def _report(progress: Progress, total: int):
@@ -205,7 +207,12 @@ def render_film(
         settings["max_depth"] = max_depth
     for name, value in settings.items():
         setattr(local, name, value)
-    total_spp = local.spp
+    if local.integrator == "sppm":
+        raise ValueError(
+            "sppm renders in photon passes over the whole image and cannot be split into bands: "
+            "render it in one process (Scene.render)"
+        )
+    width, height = local.resolution
 
     files, main = scene_files(scene_path)
     h = hashlib.sha256()
@@ -219,7 +226,7 @@ def render_film(
     if chunks is None:
         cpus = int(ray.cluster_resources().get("CPU", 1))
         chunks = max(1, 2 * cpus // threads_per_task)
-    ranges = _chunk_bounds(total_spp, min(chunks, total_spp))
+    windows = _bands(width, height, chunks)
 
     task = ray.remote(_render_chunk).options(
         num_cpus=threads_per_task,
@@ -228,7 +235,7 @@ def render_film(
         name="mcrender_chunk",
     )
     files_ref = ray.put(files)
-    refs = [task.remote(files_ref, main, digest, settings, a, b, threads_per_task) for a, b in ranges]
+    refs = [task.remote(files_ref, main, digest, settings, w, threads_per_task) for w in windows]
     update, close = _report(progress, len(refs))
     try:
         pending = list(refs)
@@ -240,7 +247,7 @@ def render_film(
         close()
     film = films[0]
     for f in films[1:]:
-        film = film.merged(f)
+        film = film.combined(f)
     return film
 
 
@@ -257,7 +264,7 @@ def render(
 
     ``address``: the cluster (``"HOST:PORT"``, ``"auto"``, or None for a local one started
     by ``ray.init``); ignored when Ray is already initialised in this process. ``chunks``:
-    number of sample ranges (default: twice the cluster's CPUs; at most ``spp``).
+    number of bands of rows (default: twice the cluster's CPUs; at most the image height).
     Keyword options: ``resolution``, ``max_depth`` (override the file's),
     ``threads_per_task`` (render threads and Ray CPUs per chunk, default 1),
     ``max_retries`` (retries of a chunk whose worker died, default 3), ``progress`` (True:
@@ -269,14 +276,14 @@ def main(argv: Optional[List[str]] = None) -> int:
     """``python -m mcrender.distributed SCENE -o OUT.exr --address ADDR``."""
     p = argparse.ArgumentParser(
         prog="python -m mcrender.distributed",
-        description="Render a pbrt-v4 scene on a Ray cluster (bit-identical to a single-process render).",
+        description="Render a scene on a Ray cluster (bit-identical to a single-process render).",
     )
-    p.add_argument("scene", help="pbrt-v4 scene file")
+    p.add_argument("scene", help="scene file (pbrt-v4 or Mitsuba 3 XML)")
     p.add_argument("-o", "--output", required=True, help="output image (.exr linear float, .png 8-bit sRGB)")
     p.add_argument("--address", default=None, help="Ray cluster address HOST:PORT (default: start a local one)")
     p.add_argument("--spp", type=int, default=None, help="samples per pixel (default: the file's)")
     p.add_argument("--seed", type=int, default=None, help="random seed (default: the file's)")
-    p.add_argument("--chunks", type=int, default=None, help="number of sample ranges (default: 2 x CPUs)")
+    p.add_argument("--chunks", type=int, default=None, help="number of bands of rows (default: 2 x CPUs)")
     p.add_argument("--threads-per-task", type=int, default=1, help="render threads per chunk (default 1)")
     p.add_argument("--variance-output", default=None, help="also write the per-pixel variance (EXR)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
