@@ -218,3 +218,85 @@ fn shared_edges_leave_no_gaps() {
         }
     }
 }
+
+/// A degenerate input whose tree is deep (boxes at exponentially growing distances: each
+/// SAH split cuts off the nearest few), so queries use the heap-allocated traversal stack;
+/// they must still agree with brute force.
+#[test]
+fn deep_trees_traverse_with_a_heap_stack() {
+    let tris: Vec<[Vec3; 3]> = (0..340)
+        .map(|i| {
+            let x = 1.29f32.powi(i);
+            let s = 0.3 * x.min(1e3);
+            [Vec3::new(x, -s, -s), Vec3::new(x, s, -s), Vec3::new(x, 0.0, s)]
+        })
+        .collect();
+    let shapes = shapes_of(&tris);
+    let bounds: Vec<Bounds3> = shapes.iter().map(Shape::bounds).collect();
+    let wide = WideBvh::build(&bounds);
+    assert_eq!(wide.check_invariants(&bounds), Ok(()));
+    assert!(
+        wide.traversal_stack_size() > 64,
+        "the tree is not deep enough to test the heap stack: {}",
+        wide.traversal_stack_size()
+    );
+    for (i, tri) in tris.iter().enumerate().step_by(7) {
+        let centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
+        for o in [Vec3::new(-1.0, 0.1, 0.05), centroid + Vec3::new(0.0, 0.2, -3.0)] {
+            let ray = Ray::new(o, (centroid - o).normalize());
+            let brute = shapes
+                .iter()
+                .filter_map(|s| s.intersect(&ray, f32::INFINITY).map(|h| h.t))
+                .min_by(f32::total_cmp);
+            let fast = wide.closest_hit(&ray, f32::INFINITY, |p, r, t| {
+                shapes[p as usize].intersect(r, t).map(|h| (h.t, h.t))
+            });
+            assert_eq!(brute, fast.map(|f| f.1), "triangle {i}, origin {o}");
+            let blocked = wide.any_hit(&ray, f32::INFINITY, |p, r, t| {
+                shapes[p as usize].intersect(r, t).is_some()
+            });
+            assert_eq!(blocked, brute.is_some(), "triangle {i}, origin {o}");
+        }
+    }
+}
+
+/// After `reorder_by_leaves` the leaves list the reordered primitives in storage order, and
+/// every query finds the same primitive as before (now under its new index).
+#[test]
+fn reordering_by_leaves_keeps_every_answer() {
+    let tris: Vec<[Vec3; 3]> = (0..500u32)
+        .map(|i| {
+            let f = |k: u32| ((i.wrapping_mul(2_654_435_761).wrapping_add(k * 40_503)) % 1000) as f32 / 50.0 - 10.0;
+            let c = Vec3::new(f(1), f(2), f(3));
+            [c, c + Vec3::new(0.0, 2.5, 0.3), c + Vec3::new(0.3, 0.0, 2.5)]
+        })
+        .collect();
+    let shapes = shapes_of(&tris);
+    let bounds: Vec<Bounds3> = shapes.iter().map(Shape::bounds).collect();
+    let original = WideBvh::build(&bounds);
+    let mut reordered = original.clone();
+    let ids: Vec<usize> = (0..shapes.len()).collect();
+    let ids = reordered.reorder_by_leaves(ids);
+    assert_eq!(reordered.prim_indices(), (0..shapes.len() as u32).collect::<Vec<_>>());
+    let moved: Vec<&Shape> = ids.iter().map(|&i| &shapes[i]).collect();
+    let moved_bounds: Vec<Bounds3> = moved.iter().map(|s| s.bounds()).collect();
+    assert_eq!(reordered.check_invariants(&moved_bounds), Ok(()));
+    let mut hits = 0;
+    for k in 0..200u32 {
+        let o = Vec3::new(-15.0, (k % 20) as f32 - 10.0, (k / 20) as f32 * 2.0 - 10.0);
+        let ray = Ray::new(o, Vec3::new(1.0, 0.05, -0.03).normalize());
+        let before = original.closest_hit(&ray, f32::INFINITY, |p, r, t| {
+            shapes[p as usize].intersect(r, t).map(|h| (h.t, ()))
+        });
+        let after = reordered.closest_hit(&ray, f32::INFINITY, |p, r, t| {
+            moved[p as usize].intersect(r, t).map(|h| (h.t, ()))
+        });
+        assert_eq!(
+            before.map(|b| b.0 as usize),
+            after.map(|a| ids[a.0 as usize]),
+            "ray {k}"
+        );
+        hits += usize::from(before.is_some());
+    }
+    assert!(hits >= 20, "only {hits} of 200 rays hit: the test shows little");
+}

@@ -735,7 +735,8 @@ impl Scene {
                 ),
             ));
         }
-        let bvh = WideBvh::build(&bounds);
+        let mut bvh = WideBvh::build(&bounds);
+        let primitives = bvh.reorder_by_leaves(primitives);
         // Distant and infinite lights need the scene's size before their power is known.
         let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));
         lights.iter_mut().for_each(|l| l.preprocess(&scene_bounds));

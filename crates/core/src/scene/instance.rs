@@ -24,10 +24,9 @@ impl ObjectGeometry {
     #[must_use]
     pub fn new(primitives: Vec<Primitive>) -> Self {
         let bounds: Vec<Bounds3> = primitives.iter().map(|p| p.shape.bounds()).collect();
-        Self {
-            bvh: WideBvh::build(&bounds),
-            primitives,
-        }
+        let mut bvh = WideBvh::build(&bounds);
+        let primitives = bvh.reorder_by_leaves(primitives);
+        Self { bvh, primitives }
     }
 }
 
