@@ -35,6 +35,8 @@ pub enum RouletteChoice {
     Off,
     /// pbrt-v4's rule (the default): stop with probability 1 - max(throughput) after the second bounce.
     Throughput,
+    /// Mitsuba 3's rule: from the fifth bounce, continue with probability min(max(throughput), 0.95).
+    Mitsuba,
 }
 
 /// Sampler overrides.
@@ -215,6 +217,9 @@ impl SceneArgs {
         match (self.rr, self.rr_threshold, self.rr_prob) {
             (Some(RouletteChoice::Off), ..) => desc.integrator.russian_roulette = RussianRoulette::Off,
             (Some(RouletteChoice::Throughput), ..) => desc.integrator.russian_roulette = RussianRoulette::Throughput,
+            (Some(RouletteChoice::Mitsuba), ..) => {
+                desc.integrator.russian_roulette = RussianRoulette::Delayed { start_depth: 5 };
+            }
             (None, None, None) => {}
             (None, t, q) => {
                 let (threshold, probability) = (t.unwrap_or(1.0), q.unwrap_or(0.5));

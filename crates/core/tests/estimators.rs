@@ -200,6 +200,8 @@ fn russian_roulette_is_unbiased_and_saves_work() {
             probability: 0.9,
         },
         RussianRoulette::Throughput,
+        RussianRoulette::Delayed { start_depth: 5 },
+        RussianRoulette::Delayed { start_depth: 0 },
     ];
     let mut rays = Vec::new();
     for rr in settings {
@@ -223,6 +225,8 @@ fn russian_roulette_is_unbiased_and_saves_work() {
         rays[1] < rays[0] && rays[2] < rays[1] && rays[4] < rays[3] && rays[3] < rays[0],
         "{rays:?}"
     );
+    // Mitsuba's rule cuts later than pbrt's, and earlier when started earlier.
+    assert!(rays[5] < rays[6] && rays[6] < rays[0] && rays[7] < rays[6], "{rays:?}");
 }
 
 /// Rendering samples [0, 3) and [3, 8) and merging gives the same estimate as rendering

@@ -626,3 +626,26 @@ fn bdpt_is_read_with_its_parameters_and_no_fallback_warning() {
     assert!(!s.description.integrator.bdpt.regularize);
     assert!(s.warnings.iter().any(|w| w.contains("regularize")), "{:?}", s.warnings);
 }
+
+#[test]
+fn russian_roulette_rules_are_read() {
+    let with = |params: &str| format!("Integrator \"path\" {params}\nWorldBegin\n");
+    let rr = |params: &str| load(&with(params)).description.integrator.russian_roulette;
+    use mcrender_core::scene::RussianRoulette;
+    assert_eq!(rr(""), RussianRoulette::Throughput);
+    assert_eq!(rr("\"string russianroulette\" \"off\""), RussianRoulette::Off);
+    assert_eq!(
+        rr("\"string russianroulette\" \"mitsuba\""),
+        RussianRoulette::Delayed { start_depth: 5 }
+    );
+    assert_eq!(
+        rr("\"string russianroulette\" \"mitsuba\" \"integer rrdepth\" [ 2 ]"),
+        RussianRoulette::Delayed { start_depth: 2 }
+    );
+    let err = load_err(&with(
+        "\"string russianroulette\" \"mitsuba\" \"integer rrdepth\" [ -1 ]",
+    ));
+    assert!(err.contains("rrdepth"), "{err}");
+    let err = load_err(&with("\"string russianroulette\" \"sometimes\""));
+    assert!(err.contains("\"mitsuba\""), "{err}");
+}

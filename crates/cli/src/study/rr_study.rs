@@ -37,8 +37,10 @@ pub fn parse_setting(s: &str) -> Result<RussianRoulette, String> {
     match s {
         "off" => Ok(RussianRoulette::Off),
         "throughput" => Ok(RussianRoulette::Throughput),
+        "mitsuba" => Ok(RussianRoulette::Delayed { start_depth: 5 }),
         _ => {
-            let err = || format!("expected off, throughput or THRESHOLD:PROBABILITY (e.g. 0.25:0.5), found \"{s}\"");
+            let err =
+                || format!("expected off, throughput, mitsuba or THRESHOLD:PROBABILITY (e.g. 0.25:0.5), found \"{s}\"");
             let (t, q) = s.split_once(':').ok_or_else(err)?;
             let (threshold, probability): (f32, f32) = (t.parse().map_err(|_| err())?, q.parse().map_err(|_| err())?);
             if !(threshold.is_finite() && threshold >= 0.0 && (0.0..1.0).contains(&probability)) {
@@ -55,6 +57,7 @@ fn describe(rr: RussianRoulette) -> String {
     match rr {
         RussianRoulette::Off => "no RR".into(),
         RussianRoulette::Throughput => "pbrt (throughput)".into(),
+        RussianRoulette::Delayed { start_depth } => format!("mitsuba (from bounce {start_depth})"),
         RussianRoulette::Threshold { threshold, probability } => {
             format!("{:.0}% below {threshold}", probability * 100.0)
         }

@@ -4,6 +4,9 @@
 use crate::color::Rgb;
 use crate::scene::RussianRoulette;
 
+/// The highest survival probability of [`RussianRoulette::Delayed`] (Mitsuba 3's 0.95).
+const MAX_SURVIVAL: f32 = 0.95;
+
 /// Play roulette after bounce `depth` with path throughput `beta` and uniform number `u`.
 /// Returns `None` when the path stops, otherwise the reweighted throughput.
 #[must_use]
@@ -15,6 +18,14 @@ pub fn roulette(rule: RussianRoulette, beta: Rgb, depth: u32, u: f32) -> Option<
             let m = beta.max_component();
             if depth > 1 && m < 1.0 {
                 (1.0 - m).max(0.0)
+            } else {
+                0.0
+            }
+        }
+        // Mitsuba 3: survival min(max(beta), 0.95) from bounce `start_depth` on.
+        RussianRoulette::Delayed { start_depth } => {
+            if depth >= start_depth {
+                1.0 - beta.max_component().min(MAX_SURVIVAL)
             } else {
                 0.0
             }
@@ -46,6 +57,7 @@ mod tests {
         let beta = Rgb::new(0.2, 0.3, 0.1);
         for rule in [
             RussianRoulette::Throughput,
+            RussianRoulette::Delayed { start_depth: 0 },
             RussianRoulette::Threshold {
                 threshold: 0.5,
                 probability: 0.9,

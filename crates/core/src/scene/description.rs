@@ -304,6 +304,13 @@ pub enum RussianRoulette {
     /// throughput `beta` is below 1, stop with probability `1 - max(beta)`.
     #[default]
     Throughput,
+    /// Mitsuba 3's rule (`path.cpp`): from bounce `start_depth` on (Mitsuba's `rr_depth`,
+    /// 5 by default), continue with probability `min(max(beta), 0.95)`. Later than pbrt's,
+    /// so short paths, which carry most of the light, are not cut.
+    Delayed {
+        /// First bounce after which roulette is played.
+        start_depth: u32,
+    },
     /// The lecture's rule: when the luminance of the throughput is below `threshold`, stop
     /// with probability `probability`.
     Threshold {

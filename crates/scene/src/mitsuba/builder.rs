@@ -11,7 +11,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
     CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MaterialDesc, MaterialId,
-    SamplerDesc, SamplerKind, SceneDescription,
+    RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
 };
 use mcrender_core::texture::FloatTexture;
 
@@ -434,8 +434,13 @@ impl Builder {
                             ))
                         }
                     };
-                    // Russian roulette differs in its rule but not in the expectation.
-                    let _ = p.int("rr_depth", 5)?;
+                    // Mitsuba's own roulette rule, from its `rr_depth`.
+                    let rr_depth = p.int("rr_depth", 5)?;
+                    d.russian_roulette = RussianRoulette::Delayed {
+                        start_depth: u32::try_from(rr_depth).map_err(|_| {
+                            SceneError::invalid(&el.loc, format!("rr_depth {rr_depth} (expected >= 0)"))
+                        })?,
+                    };
                 }
                 self.desc.integrator = d;
             }

@@ -445,6 +445,15 @@ fn russian_roulette(params: &ParamSet) -> Result<RussianRoulette, SceneError> {
     match (mode_name, threshold) {
         (Some("off"), false) => Ok(RussianRoulette::Off),
         (None | Some("throughput"), false) => Ok(RussianRoulette::Throughput),
+        (Some("mitsuba"), false) => {
+            let start = params.int("rrdepth", 5)?;
+            if start < 0 {
+                return Err(param_error(params, "rrdepth", "must be a non-negative bounce count"));
+            }
+            Ok(RussianRoulette::Delayed {
+                start_depth: start as u32,
+            })
+        }
         (None | Some("threshold"), _) => {
             let t = params.float("rrthreshold", 1.0)?;
             let q = params.float("rrprobability", 0.5)?;
@@ -463,7 +472,7 @@ fn russian_roulette(params: &ParamSet) -> Result<RussianRoulette, SceneError> {
             let loc = &mode.as_ref().expect("mode given").1;
             Err(SceneError::invalid(
                 loc,
-                format!("expected russianroulette \"off\", \"throughput\" or \"threshold\" (with rrthreshold/rrprobability), found \"{other}\""),
+                format!("expected russianroulette \"off\", \"throughput\", \"mitsuba\" (with rrdepth) or \"threshold\" (with rrthreshold/rrprobability), found \"{other}\""),
             ))
         }
     }
