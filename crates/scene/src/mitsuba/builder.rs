@@ -17,7 +17,7 @@ use mcrender_core::texture::FloatTexture;
 
 use super::props::Props;
 use super::xml::{Element, Reader};
-use crate::error::SceneError;
+use crate::error::{tidy_message, SceneError};
 use crate::limits::LoadLimits;
 use crate::pbrt::LoadedScene;
 
@@ -168,7 +168,8 @@ impl Builder {
         Ok(LoadedScene {
             description: self.desc,
             output_filename: None,
-            warnings: self.warnings,
+            // Warnings quote the scene's text: cut long parts, escape control characters.
+            warnings: self.warnings.iter().map(|w| tidy_message(w)).collect(),
             image_bytes: self.image_bytes,
         })
     }
