@@ -6,7 +6,8 @@
 //!
 //! ```text
 //! "MCRCKPT\n"                      8 bytes, magic
-//! version                          u32 little-endian (2)
+//! version                          u32 little-endian (3; versions 1 and 2 stored the splat
+//!                                  sums as f64 and are refused)
 //! header length                    u64 little-endian
 //! header                           UTF-8 JSON: format, version, binary, fingerprint, cwd,
 //!                                  args, output, samples_done, samples_per_pixel, width,
@@ -17,11 +18,17 @@
 //!
 //! The `film` section holds, per pixel in row-major order, `sum_w`, `sum_wl[3]`,
 //! `sum_wl2[3]` (f64) and `count` (u64), then per pixel the splat sums (3 i128, fixed point
-//! in units of 2^-64, as `SplatSum` keeps them), all little endian: the accumulators themselves, so the resumed render continues them exactly. A
+//! in units of 2^-64, as `SplatSum` keeps them), all little endian: the accumulators
+//! themselves, so the resumed render continues them exactly. A
 //! JSON header keeps the file self-describing and easy to inspect; raw floats keep it small
-//! and exact (no decimal round trip). An integrator with per-pixel state of its own (SPPM's
-//! radii and photon counts) adds a section named after it; a reader refuses sections it
-//! does not know, and the fingerprint already ties a checkpoint to its integrator.
+//! and exact (no decimal round trip).
+//!
+//! An integrator with state of its own beyond the film (SPPM's per-pixel radii, photon
+//! counts and flux, and its iteration count) adds one section `integrator.NAME` after the
+//! film, whose bytes only that integrator reads ([`IntegratorState`]; SPPM's layout is
+//! `mcrender_core::integrator::sppm::SppmState::to_bytes`). Its film section then holds
+//! the image so far. A reader refuses sections it does not know, and the fingerprint
+//! already ties a checkpoint to its integrator.
 //!
 //! The fingerprint is a SHA-256 over the binary's version, the scene file's bytes and those
 //! of every file it names (includes, meshes, textures; found as quoted strings naming
@@ -48,8 +55,12 @@ use crate::builtin;
 use crate::render_cmd::RenderArgs;
 
 const MAGIC: &[u8; 8] = b"MCRCKPT\n";
-const VERSION: u32 = 2;
-/// Bytes per pixel in the film section: 7 f64 + 1 u64 + 3 f64.
+const VERSION: u32 = 3;
+/// Versions this binary reads (the integrator-state section is optional).
+const READS: [u32; 1] = [3];
+/// Prefix of the integrator-state section's name.
+const STATE_PREFIX: &str = "integrator.";
+/// Bytes per pixel in the film section: 7 f64 + 1 u64 + 3 i128.
 const FILM_BYTES_PER_PIXEL: usize = 8 * 8 + 3 * 16;
 
 /// The checkpoint flags of `mcrender render`.
@@ -94,6 +105,16 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     Ok(Duration::from_secs_f64(secs))
 }
 
+/// The state of an integrator with its own driver (SPPM; MLT may add its own), saved as the
+/// section `integrator.NAME`: bytes only that integrator reads.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct IntegratorState {
+    /// The integrator's name (`sppm`).
+    pub name: String,
+    /// Its serialised state.
+    pub bytes: Vec<u8>,
+}
+
 /// What a checkpoint holds.
 #[derive(Clone, Debug)]
 pub struct Checkpoint {
@@ -109,6 +130,8 @@ pub struct Checkpoint {
     pub samples_per_pixel: u32,
     /// The accumulated film, with `samples_per_pixel()` samples done.
     pub film: Film,
+    /// The integrator's own state, for integrators with one.
+    pub integrator_state: Option<IntegratorState>,
 }
 
 /// How the render was asked for: what a resume re-runs.
@@ -297,10 +320,19 @@ fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// Write a checkpoint atomically.
-pub fn write(path: &Path, fingerprint: &str, invocation: &Invocation, spp: u32, film: &Film) -> Result<()> {
+/// Write a checkpoint atomically, with the integrator's own `state` if it has one.
+pub fn write(
+    path: &Path,
+    fingerprint: &str,
+    invocation: &Invocation,
+    spp: u32,
+    film: &Film,
+    state: Option<&IntegratorState>,
+) -> Result<()> {
     let what = || format!("cannot write checkpoint \"{}\"", path.display());
     let n = film.pixels().len();
+    let mut sections = vec![json!({"name": "film", "bytes": n * FILM_BYTES_PER_PIXEL})];
+    sections.extend(state.map(|s| json!({"name": format!("{STATE_PREFIX}{}", s.name), "bytes": s.bytes.len()})));
     let header = json!({
         "format": "mcrender checkpoint",
         "version": VERSION,
@@ -313,7 +345,7 @@ pub fn write(path: &Path, fingerprint: &str, invocation: &Invocation, spp: u32, 
         "samples_per_pixel": spp,
         "width": film.width(),
         "height": film.height(),
-        "sections": [{"name": "film", "bytes": n * FILM_BYTES_PER_PIXEL}],
+        "sections": sections,
     });
     let header = serde_json::to_vec(&header).with_context(what)?;
     let dir = match path.parent() {
@@ -356,6 +388,9 @@ pub fn write(path: &Path, fingerprint: &str, invocation: &Invocation, spp: u32, 
             for x in s.to_fixed() {
                 out.write_all(&x.to_le_bytes())?;
             }
+        }
+        if let Some(s) = state {
+            out.write_all(&s.bytes)?;
         }
         let digest = out.hash.finalize_reset();
         out.inner.write_all(&digest).with_context(what)?;
@@ -400,9 +435,9 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
     }
     let (body, sum) = bytes.split_at(bytes.len() - 32);
     let version = u32::from_le_bytes(body[8..12].try_into().expect("4 bytes"));
-    if version != VERSION {
+    if !READS.contains(&version) {
         return Err(format!(
-            "format version {version}, this mcrender reads version {VERSION}"
+            "format version {version}, this mcrender reads version {VERSION} (earlier versions stored the splat sums as f64)"
         ));
     }
     if Sha256::digest(body).as_slice() != sum {
@@ -450,6 +485,7 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         .ok_or("header \"sections\" is not a list")?;
     let mut at = header_end;
     let mut film = None;
+    let mut integrator_state = None;
     for s in sections {
         let name = s
             .get("name")
@@ -468,6 +504,15 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         at = end;
         match name {
             "film" => film = Some(read_film(data, width, height, samples_done)?),
+            state if version >= 2 && state.starts_with(STATE_PREFIX) => {
+                if integrator_state.is_some() {
+                    return Err("two integrator sections".into());
+                }
+                integrator_state = Some(IntegratorState {
+                    name: state[STATE_PREFIX.len()..].to_owned(),
+                    bytes: data.to_vec(),
+                });
+            }
             other => return Err(format!("unknown section \"{other}\" (written by a newer mcrender?)")),
         }
     }
@@ -481,6 +526,7 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         output,
         samples_per_pixel,
         film: film.ok_or("no film section")?,
+        integrator_state,
     })
 }
 
@@ -563,9 +609,10 @@ mod tests {
     fn round_trip_is_exact_and_damage_is_refused() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.ckpt");
-        write(&path, "ab12", &invocation(), 4, &film()).unwrap();
+        write(&path, "ab12", &invocation(), 4, &film(), None).unwrap();
         let ck = read(&path).unwrap();
         assert_eq!(ck.film, film());
+        assert_eq!(ck.integrator_state, None);
         assert_eq!((ck.fingerprint.as_str(), ck.samples_per_pixel), ("ab12", 4));
         assert_eq!(ck.args, invocation().args);
         // Only the checkpoint is left: no temporary file.
@@ -577,6 +624,34 @@ mod tests {
         let mut flipped = bytes.clone();
         flipped[bytes.len() / 2] ^= 1;
         assert!(parse(&flipped).unwrap_err().contains("checksum"));
+    }
+
+    #[test]
+    fn an_integrator_state_round_trips_and_other_versions_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.ckpt");
+        let state = IntegratorState {
+            name: "sppm".into(),
+            bytes: (0..=255).collect(),
+        };
+        write(&path, "ab12", &invocation(), 4, &film(), Some(&state)).unwrap();
+        let ck = read(&path).unwrap();
+        assert_eq!((ck.film, ck.integrator_state), (film(), Some(state)));
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(parse(&bytes[..bytes.len() - 40]).is_err());
+
+        // Without the integrator section; then the same bytes marked as other versions.
+        write(&path, "ab12", &invocation(), 4, &film(), None).unwrap();
+        let mut file = std::fs::read(&path).unwrap();
+        assert_eq!(parse(&file).unwrap().film, film());
+        file.truncate(file.len() - 32);
+        for version in [2u32, 4] {
+            file[8..12].copy_from_slice(&version.to_le_bytes());
+            let mut signed = file.clone();
+            signed.extend_from_slice(&Sha256::digest(&file));
+            let err = parse(&signed).unwrap_err();
+            assert!(err.contains(&format!("version {version}")), "{err}");
+        }
     }
 
     #[test]

@@ -18,6 +18,7 @@ mod preflight;
 mod progressive;
 mod render_cmd;
 mod scene_args;
+mod sppm_render;
 mod study;
 
 use std::process::ExitCode;

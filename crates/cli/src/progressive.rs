@@ -10,12 +10,13 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
+use mcrender_core::film::Film;
 use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Watch};
 use mcrender_core::scene::{Scene, SceneDescription};
 use mcrender_scene::image_io::{write_exr_layers_with_metadata, write_image, ImageRgb};
 
-use crate::checkpoint::{self, Invocation, Resume};
+use crate::checkpoint::{self, Checkpoint, Invocation, Resume};
 use crate::interrupt;
 use crate::render_cmd::{progress_bar, RenderArgs};
 
@@ -24,6 +25,78 @@ pub const MAX_WAVE: Duration = Duration::from_secs(5);
 
 /// Default time between checkpoints.
 pub const DEFAULT_EVERY: Duration = Duration::from_secs(60);
+
+/// Where a render checkpoints, what identifies it, and the checkpoint it continues.
+pub struct Plan {
+    /// `--checkpoint`: checkpoints are written periodically only when given.
+    pub explicit: Option<PathBuf>,
+    /// Where the checkpoint goes (when interrupted without --checkpoint: OUTPUT.ckpt).
+    pub path: PathBuf,
+    /// The render's fingerprint.
+    pub fingerprint: String,
+    /// What later checkpoints record as the command to resume.
+    pub invocation: Invocation,
+    /// The checkpoint continued (a --resume, or the same command run again), checked
+    /// against this render's fingerprint.
+    pub checkpoint: Option<Checkpoint>,
+}
+
+/// Work out the checkpoint of a render writing `output`: the file, the fingerprint, and
+/// the checkpoint to continue (refusing one of another render).
+pub fn plan(args: &RenderArgs, resume: Option<Resume>, desc: &SceneDescription, output: &Path) -> Result<Plan> {
+    let spp = desc.sampler.samples_per_pixel;
+    let explicit = args.checkpointing.checkpoint.clone();
+    let fallback = {
+        let mut name = output.as_os_str().to_owned();
+        name.push(".ckpt");
+        PathBuf::from(name)
+    };
+    let path = explicit.clone().unwrap_or(fallback);
+    let mut outputs: Vec<&Path> = vec![output, &path];
+    outputs.extend(args.variance_output.as_deref());
+    let fingerprint = checkpoint::fingerprint(args.scene.scene.as_deref(), desc, &outputs)?;
+    let (invocation, checkpoint) = match resume {
+        Some(r) => {
+            checkpoint::check_fingerprint(&path, &r.checkpoint, &fingerprint, desc)?;
+            (r.invocation, Some(r.checkpoint))
+        }
+        // Re-running the command of a render that was stopped continues it; a checkpoint
+        // of another render is never overwritten.
+        None => match explicit.as_deref().filter(|p| p.exists()) {
+            Some(path) => {
+                let ck = checkpoint::read(path).with_context(|| {
+                    format!(
+                        "--checkpoint \"{}\" exists and is not a usable checkpoint; remove it or choose another file",
+                        path.display()
+                    )
+                })?;
+                checkpoint::check_fingerprint(path, &ck, &fingerprint, desc).with_context(|| {
+                    format!(
+                        "--checkpoint \"{}\" belongs to another render; remove it or choose another file",
+                        path.display()
+                    )
+                })?;
+                let done = match &ck.integrator_state {
+                    None => format!("{} of {spp} samples per pixel done", ck.film.samples_per_pixel()),
+                    Some(s) => format!("saved by {}", s.name),
+                };
+                eprintln!(
+                    "mcrender: continuing the render in checkpoint \"{}\" ({done})",
+                    path.display(),
+                );
+                (Invocation::current()?, Some(ck))
+            }
+            None => (Invocation::current()?, None),
+        },
+    };
+    Ok(Plan {
+        explicit,
+        path,
+        fingerprint,
+        invocation,
+        checkpoint,
+    })
+}
 
 /// Render `scene` (described by `desc`, loaded from `args`) to its sample count, with
 /// checkpoints and interruption; a resume continues its film. Returns the finished render,
@@ -36,45 +109,23 @@ pub fn render(
     output: &Path,
 ) -> Result<RenderOutput> {
     let spp = desc.sampler.samples_per_pixel;
-    let explicit = args.checkpointing.checkpoint.clone();
-    let fallback = {
-        let mut name = output.as_os_str().to_owned();
-        name.push(".ckpt");
-        PathBuf::from(name)
-    };
-    let ck_path = explicit.clone().unwrap_or_else(|| fallback.clone());
-    let mut outputs: Vec<&Path> = vec![output, &ck_path];
-    outputs.extend(args.variance_output.as_deref());
-    let fingerprint = checkpoint::fingerprint(args.scene.scene.as_deref(), desc, &outputs)?;
-    let (invocation, film) = match resume {
-        Some(r) => {
-            checkpoint::check_fingerprint(&ck_path, &r.checkpoint, &fingerprint, desc)?;
-            (r.invocation, Some(r.checkpoint.film))
-        }
-        // Re-running the command of a render that was stopped continues it; a checkpoint
-        // of another render is never overwritten.
-        None => {
-            match explicit.as_deref().filter(|p| p.exists()) {
-                Some(path) => {
-                    let ck = checkpoint::read(path).with_context(|| {
-                    format!("--checkpoint \"{}\" exists and is not a usable checkpoint; remove it or choose another file", path.display())
-                })?;
-                    checkpoint::check_fingerprint(path, &ck, &fingerprint, desc).with_context(|| {
-                        format!(
-                            "--checkpoint \"{}\" belongs to another render; remove it or choose another file",
-                            path.display()
-                        )
-                    })?;
-                    eprintln!(
-                        "mcrender: continuing the render in checkpoint \"{}\" ({} of {spp} samples per pixel done)",
-                        path.display(),
-                        ck.film.samples_per_pixel()
-                    );
-                    (Invocation::current()?, Some(ck.film))
-                }
-                None => (Invocation::current()?, None),
-            }
-        }
+    let Plan {
+        explicit,
+        path: ck_path,
+        fingerprint,
+        invocation,
+        checkpoint,
+    } = plan(args, resume, desc, output)?;
+    let film = match checkpoint {
+        Some(ck) => match ck.integrator_state {
+            None => Some(ck.film),
+            Some(s) => bail!(
+                "checkpoint \"{}\" holds the state of the {} integrator, not of this render's; nothing was written",
+                ck_path.display(),
+                s.name
+            ),
+        },
+        None => None,
     };
     let every = args.checkpointing.checkpoint_every.unwrap_or(DEFAULT_EVERY);
     let opts = RenderOptions {
@@ -121,7 +172,7 @@ pub fn render(
         if let Some(path) = &explicit {
             // A little early rather than a wave late.
             if done < spp && last_checkpoint.elapsed() >= every.mul_f64(0.9) {
-                checkpoint::write(path, &fingerprint, &invocation, spp, session.film())?;
+                checkpoint::write(path, &fingerprint, &invocation, spp, session.film(), None)?;
                 last_checkpoint = Instant::now();
             }
         }
@@ -131,8 +182,14 @@ pub fn render(
     let out = RenderOutput { film, stats: total };
     if done < spp {
         if let Some(by) = signals.received() {
-            write_partial(&out, output, args.variance_output.as_deref(), spp)?;
-            checkpoint::write(&ck_path, &fingerprint, &invocation, spp, &out.film)?;
+            let done_text = out.film.samples_per_pixel().to_string();
+            let requested = spp.to_string();
+            let meta = [
+                ("mcrender.samplesPerPixel", done_text.as_str()),
+                ("mcrender.samplesRequested", requested.as_str()),
+            ];
+            write_partial(&out.film, output, args.variance_output.as_deref(), &meta)?;
+            checkpoint::write(&ck_path, &fingerprint, &invocation, spp, &out.film, None)?;
             eprintln!(
                 "mcrender: {by} after {done} of {spp} samples per pixel: wrote \"{}\" ({done} spp) and checkpoint \"{}\"; \
                  continue with: mcrender render --resume {}",
@@ -143,19 +200,22 @@ pub fn render(
             return Err(by.into());
         }
     }
-    // Finished: the checkpoint has served its purpose.
-    if explicit.is_some() {
-        match std::fs::remove_file(&ck_path) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                eprintln!(
-                    "mcrender: warning: cannot remove checkpoint \"{}\": {e}",
-                    ck_path.display()
-                );
-            }
-            _ => {}
-        }
-    }
+    remove_finished(explicit.as_deref());
     Ok(out)
+}
+
+/// A finished render's checkpoint has served its purpose: remove it.
+pub fn remove_finished(checkpoint: Option<&Path>) {
+    let Some(path) = checkpoint else { return };
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            eprintln!(
+                "mcrender: warning: cannot remove checkpoint \"{}\": {e}",
+                path.display()
+            );
+        }
+        _ => {}
+    }
 }
 
 fn add_stats(total: &mut RenderStats, s: &RenderStats) {
@@ -166,21 +226,16 @@ fn add_stats(total: &mut RenderStats, s: &RenderStats) {
     total.dropped_splats += s.dropped_splats;
 }
 
-/// The image (and variance) of an unfinished render; EXR files record the samples per
-/// pixel done and asked for in their header (`mcrender.samplesPerPixel`,
-/// `mcrender.samplesRequested`).
-fn write_partial(out: &RenderOutput, output: &Path, variance: Option<&Path>, spp: u32) -> Result<()> {
-    let (w, h) = (out.film.width(), out.film.height());
-    let done = out.film.samples_per_pixel().to_string();
-    let requested = spp.to_string();
-    let meta = [
-        ("mcrender.samplesPerPixel", done.as_str()),
-        ("mcrender.samplesRequested", requested.as_str()),
-    ];
+/// The image (and variance) of an unfinished render; EXR files record `meta` in their
+/// header (the samples per pixel done and asked for: `mcrender.samplesPerPixel`,
+/// `mcrender.samplesRequested`; SPPM's iterations: `mcrender.iterations`,
+/// `mcrender.iterationsRequested`).
+pub fn write_partial(film: &Film, output: &Path, variance: Option<&Path>, meta: &[(&str, &str)]) -> Result<()> {
+    let (w, h) = (film.width(), film.height());
     let write = |path: &Path, pixels: Vec<mcrender_core::color::Rgb>| -> Result<()> {
         let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
         if is_exr {
-            write_exr_layers_with_metadata(path, w, h, &[("", &pixels)], &meta)
+            write_exr_layers_with_metadata(path, w, h, &[("", &pixels)], meta)
         } else {
             write_image(
                 path,
@@ -193,9 +248,9 @@ fn write_partial(out: &RenderOutput, output: &Path, variance: Option<&Path>, spp
         }
         .with_context(|| format!("cannot write \"{}\"", path.display()))
     };
-    write(output, out.film.mean_image())?;
+    write(output, film.mean_image())?;
     if let Some(v) = variance {
-        write(v, out.film.variance_image())?;
+        write(v, film.variance_image())?;
     }
     Ok(())
 }

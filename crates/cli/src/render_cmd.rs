@@ -7,8 +7,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use mcrender_core::integrator::sppm::{self, SppmSettings};
-use mcrender_core::render::{RenderOptions, RenderOutput, RenderStats};
+use mcrender_core::render::{RenderOptions, RenderOutput};
 use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_scene::image_io::{write_images, ImageRgb};
 
@@ -84,10 +83,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     if desc.integrator.kind == IntegratorKind::Sppm {
-        if args.checkpointing.checkpoint.is_some() || resume.is_some() {
-            bail!("--checkpoint and --resume are not supported by the sppm integrator yet (its photon statistics are not checkpointed)");
-        }
-        return render_sppm(&scene, args, &output);
+        return crate::sppm_render::render(args, resume, &scene, &desc, &output);
     }
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
     let out = crate::progressive::render(args, resume, &scene, &desc, &output)?;
@@ -100,45 +96,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         ..Default::default()
     };
     crate::bdpt_visualize::write_if_requested(&desc, &opts, dir, args.quiet)?;
-    Ok(())
-}
-
-/// SPPM has its own driver (iterations of camera and photon passes, not samples per pixel).
-fn render_sppm(scene: &Scene, args: &RenderArgs, output: &Path) -> Result<()> {
-    let settings = SppmSettings::from_scene(scene);
-    let bar = progress_bar(u64::from(settings.iterations), args.quiet);
-    let start = std::time::Instant::now();
-    let cancel = std::sync::atomic::AtomicBool::new(false);
-    let (sppm, threads) = sppm::render_with_threads(
-        scene,
-        &settings,
-        args.scene.threads,
-        &|done, _| bar.set_position(done),
-        &cancel,
-    )
-    .context("cannot start the render threads")?;
-    bar.finish_and_clear();
-    let out = RenderOutput {
-        film: sppm.film,
-        stats: RenderStats {
-            elapsed: start.elapsed(),
-            paths: sppm.photons,
-            trace: sppm.trace,
-            threads,
-            ..Default::default()
-        },
-    };
-    write_outputs(&out, output, args.variance_output.as_deref())?;
-    let secs = out.stats.elapsed.as_secs_f64().max(1e-9);
-    eprintln!(
-        "{}: {}x{}, SPPM {} iterations x {} photons in {secs:.2} s on {threads} threads: {:.2} M photons/s",
-        output.display(),
-        out.film.width(),
-        out.film.height(),
-        sppm.iterations,
-        settings.photons_per_iteration,
-        sppm.photons as f64 / secs / 1e6,
-    );
     Ok(())
 }
 
@@ -174,7 +131,8 @@ pub fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
     bar
 }
 
-fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> Result<()> {
+/// Write the image (and the variance, if asked for): both files or neither.
+pub fn write_outputs(out: &RenderOutput, output: &Path, variance: Option<&Path>) -> Result<()> {
     let (w, h) = (out.film.width(), out.film.height());
     let img = ImageRgb {
         width: w,

@@ -326,3 +326,120 @@ fn a_splatting_integrator_resumes_to_the_same_bytes() {
         std::fs::read(d.join("ref.exr")).unwrap()
     );
 }
+
+/// The Cornell box rendered by SPPM, long enough (100 iterations) to be caught mid-render.
+fn sppm_scene(dir: &Path) {
+    let text = std::fs::read_to_string(scene("cornell-box/scene-v4.pbrt")).unwrap();
+    let sppm = "Integrator \"sppm\" \"integer numiterations\" [ 100 ] \
+                \"integer photonsperiteration\" [ 20000 ] \"float radius\" [ 0.05 ]";
+    let text = text.replacen("Integrator \"path\"", sppm, 1);
+    assert!(text.contains("\"sppm\""), "the scene names its integrator");
+    std::fs::write(dir.join("sppm.pbrt"), text).unwrap();
+}
+
+fn sppm_args(out: &str) -> Vec<String> {
+    ["render", "sppm.pbrt", "--resolution", RES, "-o", out, "-q"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+}
+
+fn spawn_sppm(dir: &Path, extra: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_mcrender"))
+        .args(sppm_args("out.exr"))
+        .args(extra)
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("mcrender starts")
+}
+
+fn sppm_reference(dir: &Path) -> Vec<u8> {
+    let a = sppm_args("ref.exr");
+    let o = mcrender(&a.iter().map(String::as_str).collect::<Vec<_>>(), dir);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::read(dir.join("ref.exr")).unwrap()
+}
+
+/// SPPM's per-pixel state (radii, photon counts, flux, direct light) and its iteration
+/// count are checkpointed between iterations: killed with SIGKILL and resumed on another
+/// thread count, the image is byte for byte the uninterrupted one.
+#[test]
+fn sppm_killed_after_a_checkpoint_resumes_to_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sppm_scene(d);
+    let reference = sppm_reference(d);
+    let mut child = spawn_sppm(
+        d,
+        &[
+            "--checkpoint",
+            "c.ckpt",
+            "--checkpoint-every",
+            "100ms",
+            "--threads",
+            "2",
+        ],
+    );
+    wait_for(&d.join("c.ckpt"), &mut child);
+    child.kill().unwrap();
+    assert_eq!(child.wait().unwrap().signal(), Some(9));
+    assert!(!d.join("out.exr").exists());
+    let o = resume(d, "c.ckpt", &["--threads", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_continued(&stderr(&o));
+    assert_eq!(std::fs::read(d.join("out.exr")).unwrap(), reference);
+    assert!(!d.join("c.ckpt").exists(), "a finished render removes its checkpoint");
+    assert_eq!(temp_files(d), Vec::<String>::new());
+}
+
+/// SIGINT stops SPPM between iterations: a readable partial EXR recording the iterations
+/// done, a checkpoint, exit 130; resuming finishes to the uninterrupted bytes.
+#[test]
+fn sppm_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sppm_scene(d);
+    let reference = sppm_reference(d);
+    let mut child = spawn_sppm(d, &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
+    wait_for(&d.join("c.ckpt"), &mut child);
+    signal(&child, "-INT");
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("SPPM iterations") && err.contains("--resume"), "{err}");
+    assert_eq!(temp_files(d), Vec::<String>::new());
+    let out = d.join("out.exr");
+    let meta = mcrender_scene::image_io::read_exr_metadata(&out).unwrap();
+    let done: u32 = meta
+        .iter()
+        .find(|(k, _)| k == "mcrender.iterations")
+        .map(|(_, v)| v.parse().unwrap())
+        .expect("iteration count in the EXR header");
+    assert!((1..100).contains(&done), "{meta:?}");
+    assert!(meta.contains(&("mcrender.iterationsRequested".into(), "100".into())));
+    let partial = mcrender_scene::image_io::read_exr(&out).unwrap();
+    assert!(
+        partial.pixels.iter().any(|p| p.r > 0.0),
+        "the partial image has content"
+    );
+    assert_ne!(std::fs::read(&out).unwrap(), reference, "a partial render differs");
+    let o = resume(d, "c.ckpt", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(assert_continued(&stderr(&o)), done);
+    assert_eq!(std::fs::read(&out).unwrap(), reference);
+}
+
+/// The resume continued the saved state (it did not start again): the iteration it
+/// continued from, between 1 and 99.
+fn assert_continued(err: &str) -> u32 {
+    let k: u32 = err
+        .split("continued from iteration ")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .and_then(|k| k.parse().ok())
+        .unwrap_or_else(|| panic!("the resume says where it continued from: {err}"));
+    assert!((1..100).contains(&k), "{err}");
+    k
+}

@@ -239,3 +239,36 @@ fn max_memory_flag_is_parsed_with_units() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// `--max-memory` covers a Mitsuba XML scene's bitmap textures too (its loader reported
+/// them as 0 bytes): a 16384x16384 texture is refused from its header, before it is
+/// decoded or anything rendered.
+#[test]
+fn max_memory_refuses_a_mitsuba_scene_with_a_big_texture_before_loading_it() {
+    let dir = tempfile::tempdir().unwrap();
+    // Only the TGA header: decoding would fail, so a refusal must come from the header.
+    let mut tga = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend([24, 0]);
+    std::fs::write(dir.path().join("big.tga"), tga).unwrap();
+    let xml = r#"<scene version="3.0.0">
+<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film></sensor>
+<shape type="sphere">
+  <bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="big.tga"/></texture></bsdf>
+</shape>
+<emitter type="constant"/>
+</scene>
+"#;
+    std::fs::write(dir.path().join("scene.xml"), xml).unwrap();
+    let err = refused(
+        &["render", "scene.xml", "--max-memory", "1G", "-o", "a.png", "-q"],
+        dir.path(),
+        FAST,
+    );
+    assert!(
+        err.contains("scene.xml:4:") && err.contains("16384x16384") && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    no_images(dir.path());
+}

@@ -109,3 +109,43 @@ fn sppm_is_deterministic_across_thread_counts() {
     assert_eq!(a.film.mean_image(), b.film.mean_image());
     assert_eq!(a.photons, 60_000);
 }
+
+/// A render stopped after some iterations, its state saved as bytes and continued on
+/// another thread count, ends with the same image as one never stopped; a cancelled
+/// iteration leaves the state untouched.
+#[test]
+fn sppm_state_saved_between_iterations_continues_bit_identically() {
+    use mcrender_core::integrator::sppm::{iterate, SppmState};
+    let d = centre_lit_sphere();
+    let whole = run(&d, 6, 10_000, 0.3, 2);
+    let scene = Scene::build(&d).expect("valid scene");
+    let settings = SppmSettings {
+        iterations: 6,
+        photons_per_iteration: 10_000,
+        initial_radius: 0.3,
+        seed: 7,
+        max_depth: d.integrator.max_depth,
+    };
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    let go = AtomicBool::new(false);
+    let mut state = SppmState::new(8, 8, &settings);
+    pool(2).install(|| {
+        for _ in 0..4 {
+            iterate(&scene, &settings, &mut state, &go).expect("not cancelled");
+        }
+    });
+    let saved = state.to_bytes();
+    let cancelled = pool(1).install(|| iterate(&scene, &settings, &mut state, &AtomicBool::new(true)));
+    assert!(cancelled.is_none());
+    assert_eq!(state.to_bytes(), saved, "a cancelled iteration changes nothing");
+    let mut resumed = SppmState::from_bytes(&saved, 8, 8).unwrap();
+    assert_eq!(resumed.iterations_done(), 4);
+    // Four iterations of six are not the whole image.
+    assert_ne!(resumed.film(&settings).mean_image(), whole.film.mean_image());
+    pool(1).install(|| {
+        while resumed.iterations_done() < 6 {
+            iterate(&scene, &settings, &mut resumed, &go).expect("not cancelled");
+        }
+    });
+    assert_eq!(resumed.film(&settings).mean_image(), whole.film.mean_image());
+}

@@ -12,7 +12,8 @@ use crate::pbrt::LoadedScene;
 pub struct LoadOptions {
     /// `name=value` overrides of a Mitsuba scene's `<default>`s (`-D` on the command line).
     pub defines: Vec<(String, String)>,
-    /// Memory limit for images and meshes (honoured by the pbrt-v4 loader).
+    /// Memory limit for images and meshes (the Mitsuba loader counts its images only; the
+    /// command line adds its meshes, film and BVH before rendering).
     pub limits: LoadLimits,
 }
 
@@ -62,6 +63,6 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Scen
                 ..crate::pbrt::LoadOptions::default()
             },
         ),
-        SceneFormat::Mitsuba => crate::mitsuba::load_file(path, &options.defines),
+        SceneFormat::Mitsuba => crate::mitsuba::load_file_with(path, &options.defines, options.limits),
     }
 }

@@ -11,16 +11,15 @@ use mcrender_core::scene::TriangleMeshDesc;
 /// Read `path` as one triangle mesh in the file's coordinates.
 ///
 /// # Errors
-/// A message (naming the file) when it cannot be read or parsed, has no triangles, or has
-/// non-finite coordinates.
+/// A message (not naming the file: the caller does) when it cannot be read or parsed, has
+/// no triangles, or has non-finite coordinates.
 pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
         ..tobj::LoadOptions::default()
     };
-    let (models, _materials) =
-        tobj::load_obj(path, &options).map_err(|e| format!("cannot read OBJ {}: {e}", path.display()))?;
+    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
     let mut mesh = TriangleMeshDesc::default();
     let (mut normals, mut uvs) = (Vec::new(), Vec::new());
     let (mut all_normals, mut all_uvs) = (true, true);
@@ -42,16 +41,16 @@ pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
         }
         for &i in &m.indices {
             if i as usize >= n {
-                return Err(format!("{}: vertex index {i} out of range", path.display()));
+                return Err(format!("vertex index {i} out of range"));
             }
             mesh.indices.push(base + i);
         }
     }
     if mesh.indices.is_empty() {
-        return Err(format!("{}: the OBJ file has no faces", path.display()));
+        return Err("the file has no faces".into());
     }
     if mesh.positions.iter().any(|p| !p.is_finite()) {
-        return Err(format!("{}: non-finite vertex position", path.display()));
+        return Err("non-finite vertex position".into());
     }
     if all_normals && normals.iter().all(|n| n.is_finite() && n.length_squared() > 0.0) {
         mesh.normals = Some(normals);

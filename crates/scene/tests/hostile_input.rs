@@ -98,3 +98,65 @@ fn failing_variance_output_leaves_the_main_image_behind_no_more() {
     write_images(&[(&main, &good), (&var, &good)]).unwrap();
     assert!(main.exists() && var.exists());
 }
+
+/// A Mitsuba scene (`scene.xml` in `dir`) with a bitmap texture from `texture` and an
+/// envmap from `envmap`.
+fn write_mitsuba_scene(dir: &Path, texture: &str, envmap: &str) -> std::path::PathBuf {
+    let s = format!(
+        r#"<scene version="3.0.0">
+<emitter type="envmap"><string name="filename" value="{envmap}"/></emitter>
+<shape type="sphere">
+  <bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="{texture}"/></texture></bsdf>
+</shape>
+</scene>
+"#
+    );
+    let path = dir.join("scene.xml");
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+/// The Mitsuba loader reported `image_bytes: 0` to the memory check: its bitmaps and
+/// envmaps now count as the pbrt loader's do.
+#[test]
+fn mitsuba_images_are_counted_not_reported_as_zero_bytes() {
+    use mcrender_scene::limits::{env_image_bytes, image_texture_bytes};
+    let dir = tempfile::tempdir().unwrap();
+    write_tga(&dir.path().join("t.tga"), 64);
+    write_tga(&dir.path().join("e.tga"), 32);
+    let path = write_mitsuba_scene(dir.path(), "t.tga", "e.tga");
+    let loaded = mcrender_scene::load(&path).unwrap();
+    assert_eq!(
+        loaded.image_bytes,
+        image_texture_bytes(64, 64) + env_image_bytes(32, 32)
+    );
+}
+
+/// An 8192x8192 bitmap in a Mitsuba scene is refused from its header under the limit,
+/// before it is decoded (the file here is only the header: decoding it would fail).
+#[test]
+fn mitsuba_texture_8192_is_refused_before_decoding() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut header = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    header.extend(8192u16.to_le_bytes());
+    header.extend(8192u16.to_le_bytes());
+    header.extend([24, 0]);
+    std::fs::write(dir.path().join("big.tga"), header).unwrap();
+    write_tga(&dir.path().join("e.tga"), 8);
+    let path = write_mitsuba_scene(dir.path(), "big.tga", "e.tga");
+    let options = mcrender_scene::LoadOptions {
+        limits: LoadLimits { max_memory: 1 << 30 },
+        ..mcrender_scene::LoadOptions::default()
+    };
+    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    assert!(
+        err.contains("scene.xml:4:")
+            && err.contains("\"big.tga\" (8192x8192)")
+            && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    // Without the limit it is read, and fails as the truncated file it is (not an abort).
+    let err = mcrender_scene::load(&path).unwrap_err().to_string();
+    assert!(err.contains("cannot read image \"big.tga\""), "{err}");
+}

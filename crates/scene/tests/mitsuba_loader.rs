@@ -192,3 +192,49 @@ fn unused_parameters_are_warnings_with_location() {
     assert_eq!(w.len(), 1, "{:?}", l.warnings);
     assert!(w[0].contains("s.xml:3:3"), "{w:?}");
 }
+
+/// Issue 10 item 7 for the Mitsuba loader: every error and warning is one line, quotes the
+/// scene's text at most ~80 characters, and escapes control characters (XML allows C1
+/// controls such as U+009B, the terminal's CSI, as character references).
+#[test]
+fn messages_are_one_short_line_without_control_characters() {
+    let long = "B".repeat(5000);
+    let errors = [
+        format!("<{long}/>"),
+        format!(r#"<shape type="sphere"><float name="radius" value="${long}"/></shape>"#),
+        format!(r#"<shape type="ply"><string name="filename" value="{long}.ply"/></shape>"#),
+        format!(r#"<shape type="obj"><string name="filename" value="{long}.obj"/></shape>"#),
+        format!(r#"<include filename="{long}.xml"/>"#),
+        format!(r#"<shape type="{long}"/>"#),
+        r#"<shape type="ply"><string name="filename" value="a&#x9b;31m.ply"/></shape>"#.to_string(),
+        r#"<include filename="a&#x9b;31m&#10;.xml"/>"#.to_string(),
+        r#"<shape type="sph&#x9b;ere&#127;"/>"#.to_string(),
+    ];
+    let check = |what: &str, text: &str| {
+        assert_eq!(text.lines().count(), 1, "{what}: {text}");
+        assert!(text.chars().count() < 400, "{what}: {} characters: {text}", text.len());
+        assert!(!text.chars().any(char::is_control), "{what}: {text:?}");
+    };
+    for body in &errors {
+        let e = err(body).to_string();
+        check(&body[..body.len().min(60)], &e);
+    }
+    // The PLY error is the OS's reason once, not "...: No such file or directory (os error 2)".
+    let e = err(r#"<shape type="ply"><string name="filename" value="gone.ply"/></shape>"#).to_string();
+    assert!(
+        e.contains("cannot read PLY \"gone.ply\"") && !e.contains("os error"),
+        "{e}"
+    );
+    let warned = [
+        format!(r#"<shape type="sphere"><float name="{long}" value="1"/></shape>"#),
+        format!(r#"<shape type="sphere"><{long} name="x" value="1"/></shape>"#),
+        r#"<shape type="sphere"><float name="r&#x9b;2J" value="1"/></shape>"#.to_string(),
+    ];
+    for body in &warned {
+        let l = load_text(body).unwrap();
+        assert!(!l.warnings.is_empty(), "{body}");
+        for w in &l.warnings {
+            check(&body[..body.len().min(60)], w);
+        }
+    }
+}

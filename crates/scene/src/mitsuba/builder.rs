@@ -17,7 +17,8 @@ use mcrender_core::texture::FloatTexture;
 
 use super::props::Props;
 use super::xml::{Element, Reader};
-use crate::error::SceneError;
+use crate::error::{tidy_message, SceneError};
+use crate::limits::LoadLimits;
 use crate::pbrt::LoadedScene;
 
 /// A decoded image: width, height, texels.
@@ -62,12 +63,17 @@ pub struct Builder {
     pub images: HashMap<(PathBuf, bool), ImageEntry>,
     /// The default material (`diffuse`, reflectance 0.5), made on first use.
     default_material: Option<MaterialId>,
+    /// The load's memory limit (images are refused from their headers past it).
+    pub limits: LoadLimits,
+    /// Estimated bytes of the images read so far (`crate::limits` estimates).
+    pub image_bytes: u64,
 }
 
 impl Builder {
-    /// A builder for a scene read by `reader` from a file in `dir`.
+    /// A builder for a scene read by `reader` from a file in `dir`, its images within
+    /// `limits`.
     #[must_use]
-    pub fn new(reader: Reader, dir: &Path) -> Self {
+    pub fn new(reader: Reader, dir: &Path, limits: LoadLimits) -> Self {
         let desc = SceneDescription {
             camera: CameraDesc::default(),
             film: FilmDesc {
@@ -98,6 +104,8 @@ impl Builder {
             warnings: Vec::new(),
             images: HashMap::new(),
             default_material: None,
+            limits,
+            image_bytes: 0,
         }
     }
 
@@ -160,10 +168,9 @@ impl Builder {
         Ok(LoadedScene {
             description: self.desc,
             output_filename: None,
-            warnings: self.warnings,
-            // Not estimated for Mitsuba scenes yet: the memory pre-flight check counts
-            // their meshes and film but not their bitmaps.
-            image_bytes: 0,
+            // Warnings quote the scene's text: cut long parts, escape control characters.
+            warnings: self.warnings.iter().map(|w| tidy_message(w)).collect(),
+            image_bytes: self.image_bytes,
         })
     }
 

@@ -13,10 +13,11 @@ use mcrender_core::math::{Mat4, Transform, Vec3, Vec4};
 use mcrender_core::scene::{EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc};
 
 use super::builder::{Builder, Named};
+use super::images::ImageUse;
 use super::props::Props;
 use super::xml::Element;
-use crate::error::{io_error_text, SceneError};
-use crate::image_io::{read_image, ImageError};
+use crate::error::SceneError;
+use crate::image_io::ColorEncoding;
 
 impl Builder {
     /// A top-level `<emitter>`.
@@ -57,14 +58,13 @@ impl Builder {
                 let (file, floc) = p
                     .string("filename")?
                     .ok_or_else(|| SceneError::syntax(&el.loc, "an envmap needs a \"filename\""))?;
-                let path = self.resolve(&file);
-                let img = read_image(&path).map_err(|err| {
-                    let why = match &err {
-                        ImageError::Io { source, .. } => io_error_text(source),
-                        other => other.to_string(),
-                    };
-                    SceneError::io(&floc, format!("cannot read environment map {}: {why}", path.display()))
-                })?;
+                let img = self.read_image_counted(
+                    &file,
+                    "environment map",
+                    ColorEncoding::Srgb,
+                    ImageUse::Environment,
+                    &floc,
+                )?;
                 let scale = p.float("scale", 1.0)?;
                 // mcrender's equirect light space -> Mitsuba's envmap space (module docs).
                 let to_mitsuba = Mat4::from_cols(Vec4::new(0.0, 0.0, -1.0, 0.0), Vec4::X, Vec4::Y, Vec4::W);

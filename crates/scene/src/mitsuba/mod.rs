@@ -19,6 +19,7 @@
 mod bsdfs;
 mod builder;
 mod emitters;
+mod images;
 mod props;
 mod shapes;
 mod spectra;
@@ -28,6 +29,7 @@ mod xml;
 use std::path::Path;
 
 use crate::error::SceneError;
+use crate::limits::LoadLimits;
 use crate::pbrt::LoadedScene;
 
 /// Load a Mitsuba XML scene; `defines` are `(name, value)` pairs that override the scene's
@@ -38,8 +40,22 @@ use crate::pbrt::LoadedScene;
 /// include, invalid value or unsupported plugin; the error's display reads
 /// `file:line:col: message`.
 pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<LoadedScene, SceneError> {
+    load_file_with(path, defines, LoadLimits::default())
+}
+
+/// [`load_file`] within `limits`: a bitmap texture or envmap that would pass the memory
+/// limit is refused from its header, before it is decoded; the images' estimated bytes are
+/// [`LoadedScene::image_bytes`].
+///
+/// # Errors
+/// As [`load_file`], and an image over the limit.
+pub fn load_file_with(
+    path: &Path,
+    defines: &[(String, String)],
+    limits: LoadLimits,
+) -> Result<LoadedScene, SceneError> {
     let mut reader = xml::Reader::new(defines);
     let scene = reader.read_scene(path)?;
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
-    builder::Builder::new(reader, dir).build(&scene)
+    builder::Builder::new(reader, dir, limits).build(&scene)
 }

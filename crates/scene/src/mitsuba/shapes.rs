@@ -16,7 +16,8 @@ use mcrender_core::scene::{AreaLightDesc, GeometryDesc, InstanceDesc, ObjectDesc
 use super::builder::{Builder, Named, Surface};
 use super::props::Props;
 use super::xml::Element;
-use crate::error::SceneError;
+use crate::error::{io_error_text, quoted, SceneError};
+use crate::ply::PlyError;
 
 impl Builder {
     /// `<shape>`; `group` collects the shapes of a `shapegroup` instead of the scene.
@@ -125,14 +126,20 @@ impl Builder {
                 let path = self.resolve(&file);
                 let mut mesh = if kind == "obj" {
                     let flip_v = p.bool("flip_tex_coords", true)?;
-                    let mut m = crate::obj::read_obj_mesh(&path).map_err(|e| SceneError::io(&floc, e))?;
+                    let mut m = crate::obj::read_obj_mesh(&path)
+                        .map_err(|e| SceneError::io(&floc, format!("cannot read OBJ {}: {e}", quoted(&file))))?;
                     if !flip_v {
                         flip_uv_v(&mut m);
                     }
                     m
                 } else {
-                    let ply = crate::ply::read_ply(&path)
-                        .map_err(|e| SceneError::io(&floc, format!("cannot read PLY {}: {e}", path.display())))?;
+                    let ply = crate::ply::read_ply(&path).map_err(|e| {
+                        let why = match e {
+                            PlyError::Io(io) => io_error_text(&io),
+                            PlyError::Format(msg) => msg,
+                        };
+                        SceneError::io(&floc, format!("cannot read PLY {}: {why}", quoted(&file)))
+                    })?;
                     let mut m = TriangleMeshDesc {
                         positions: ply.positions,
                         indices: ply.indices,

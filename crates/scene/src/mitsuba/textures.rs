@@ -24,11 +24,12 @@ use mcrender_core::texture::{
 };
 
 use super::builder::{Builder, Named};
+use super::images::ImageUse;
 use super::props::{numbers, Props};
 use super::spectra::pairs_to_rgb;
 use super::xml::Element;
-use crate::error::{io_error_text, SceneError};
-use crate::image_io::{read_image_encoded, ColorEncoding, ImageError};
+use crate::error::SceneError;
+use crate::image_io::ColorEncoding;
 
 /// Builds textures of one value type.
 trait Value: TextureValue {
@@ -169,13 +170,7 @@ impl Builder {
                         } else {
                             ColorEncoding::Srgb
                         };
-                        let img = read_image_encoded(&path, encoding).map_err(|err| {
-                            let why = match &err {
-                                ImageError::Io { source, .. } => io_error_text(source),
-                                other => other.to_string(),
-                            };
-                            SceneError::io(&floc, format!("cannot read image {}: {why}", path.display()))
-                        })?;
+                        let img = self.read_image_counted(&file, "image", encoding, ImageUse::Texture, &floc)?;
                         let i = (img.width, img.height, Arc::new(img.pixels));
                         self.images.insert(key, i.clone());
                         i

@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use crate::error::{io_error_text, Location, SceneError};
+use crate::error::{escape_control, io_error_text, quoted, Location, SceneError, QUOTE_MAX_CHARS};
 
 /// One XML element after directive processing.
 #[derive(Clone, Debug)]
@@ -39,13 +39,27 @@ impl Element {
     /// `<tag type="...">` as a short description for messages.
     #[must_use]
     pub fn describe(&self) -> String {
+        let tag = short(&self.tag);
         match self.attr("type") {
-            Some(t) => format!("<{} type=\"{t}\">", self.tag),
+            Some(t) => format!("<{tag} type={}>", quoted(t)),
             None => match self.attr("name") {
-                Some(n) => format!("<{} name=\"{n}\">", self.tag),
-                None => format!("<{}>", self.tag),
+                Some(n) => format!("<{tag} name={}>", quoted(n)),
+                None => format!("<{tag}>"),
             },
         }
+    }
+}
+
+/// `text` for a message outside quotes (a tag or parameter name, which XML keeps free of
+/// control characters): cut after [`QUOTE_MAX_CHARS`] characters with the length noted.
+fn short(text: &str) -> String {
+    match text.char_indices().nth(QUOTE_MAX_CHARS) {
+        None => escape_control(text),
+        Some((at, _)) => format!(
+            "{}... ({} characters)",
+            escape_control(&text[..at]),
+            text.chars().count()
+        ),
     }
 }
 
@@ -109,7 +123,11 @@ impl Reader {
         let text = std::fs::read_to_string(path).map_err(|e| {
             SceneError::io(
                 from,
-                format!("cannot read scene file {}: {}", path.display(), io_error_text(&e)),
+                format!(
+                    "cannot read scene file {}: {}",
+                    quoted(&path.to_string_lossy()),
+                    io_error_text(&e)
+                ),
             )
         })?;
         let doc = roxmltree::Document::parse(&text).map_err(|e| {
@@ -228,7 +246,11 @@ impl Reader {
                 .ok_or_else(|| {
                     SceneError::invalid(
                         loc,
-                        format!("undefined parameter ${key} (no <default> and no -D {key}=...)"),
+                        format!(
+                            "undefined parameter {} (no <default> and no -D {}=...)",
+                            quoted(&format!("${key}")),
+                            short(key)
+                        ),
                     )
                 })?;
             out.push_str(v);

@@ -17,7 +17,9 @@
 //!    `N' = N + alpha M`, `r' = r sqrt(N' / (N + M))`, `tau' = (tau + beta_vp Phi) r'^2 / r^2`.
 //!
 //! The image is `Ld / iterations + tau / (N_photons pi r^2)`, consistent (the bias vanishes
-//! as the radii shrink). Deterministic whatever the thread count: camera samples come from
+//! as the radii shrink). The per-pixel statistics carried between iterations are an
+//! [`SppmState`]; [`iterate`] advances it by one iteration, so a render can be checkpointed
+//! between iterations and continued bit-identically. Deterministic whatever the thread count: camera samples come from
 //! (seed, pixel, iteration), photons from (seed, iteration, photon index), and deposits are
 //! gathered per chunk of photons and added in chunk order.
 //!
@@ -27,9 +29,11 @@
 
 mod grid;
 mod photons;
+mod state;
 mod visible;
 
 pub use grid::PointGrid;
+pub use state::SppmState;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -38,7 +42,6 @@ use rayon::prelude::*;
 use super::TraceStats;
 use crate::color::Rgb;
 use crate::film::Film;
-use crate::math::PI;
 use crate::scene::Scene;
 
 /// SPPM settings (pbrt-v4's parameters).
@@ -104,19 +107,6 @@ pub struct SppmOutput {
     pub iterations: u32,
 }
 
-/// What SPPM keeps per pixel across iterations.
-#[derive(Clone, Copy, Debug)]
-struct PixelState {
-    /// Sum over iterations of emission and direct lighting.
-    ld: Rgb,
-    /// Accumulated flux, scaled as the radius shrinks.
-    tau: Rgb,
-    /// Search radius.
-    radius: f32,
-    /// Accumulated photon count.
-    n: f32,
-}
-
 /// Photons traced per work unit: deposits are gathered per chunk and added in chunk order.
 const PHOTON_CHUNK: u64 = 4096;
 
@@ -128,97 +118,113 @@ pub fn render(
     progress: &(dyn Fn(u64, u64) + Sync),
     cancel: &AtomicBool,
 ) -> SppmOutput {
-    let (w, h) = (scene.film.width, scene.film.height);
-    let pixel_count = (w * h) as usize;
-    let mut state = vec![
-        PixelState {
-            ld: Rgb::BLACK,
-            tau: Rgb::BLACK,
-            radius: settings.initial_radius,
-            n: 0.0,
-        };
-        pixel_count
-    ];
+    let mut state = SppmState::new(scene.film.width, scene.film.height, settings);
     let mut trace = TraceStats::default();
-    let mut done = 0u32;
-    let chunks = settings.photons_per_iteration.div_ceil(PHOTON_CHUNK);
-    for iteration in 0..settings.iterations {
-        if cancel.load(Ordering::Relaxed) {
-            break;
+    while state.iterations_done() < settings.iterations {
+        match iterate(scene, settings, &mut state, cancel) {
+            Some(t) => trace += t,
+            None => break,
         }
-        // Camera pass.
-        let camera: Vec<(visible::CameraResult, TraceStats)> = (0..h)
-            .into_par_iter()
-            .flat_map_iter(|y| visible::trace_row(scene, settings, y, iteration))
-            .collect();
-        let mut points = Vec::with_capacity(pixel_count);
-        let mut vps = Vec::with_capacity(pixel_count);
-        for (i, (c, t)) in camera.into_iter().enumerate() {
-            state[i].ld += c.ld;
-            trace += t;
-            if let Some(vp) = c.vp {
-                points.push((i as u32, vp.p, state[i].radius));
-            }
-            vps.push(c.vp);
-        }
-
-        // Grid of the visible points.
-        let grid = PointGrid::new(&points);
-
-        // Photon pass, deposits gathered per chunk.
-        let deposits: Vec<(Vec<(u32, Rgb)>, TraceStats)> = (0..chunks)
-            .into_par_iter()
-            .map(|chunk| {
-                let start = chunk * PHOTON_CHUNK;
-                let end = (start + PHOTON_CHUNK).min(settings.photons_per_iteration);
-                let radius = |i: u32| state[i as usize].radius;
-                photons::trace_chunk(scene, settings, iteration, start..end, &grid, &vps, &radius)
-            })
-            .collect();
-        let mut phi = vec![Rgb::BLACK; pixel_count];
-        let mut m = vec![0u32; pixel_count];
-        for (list, t) in deposits {
-            trace += t;
-            for (i, f) in list {
-                phi[i as usize] += f;
-                m[i as usize] += 1;
-            }
-        }
-
-        // Progressive update (alpha = 2/3).
-        const ALPHA: f32 = 2.0 / 3.0;
-        for (i, s) in state.iter_mut().enumerate() {
-            let (Some(vp), mi) = (vps[i], m[i]) else { continue };
-            if mi == 0 {
-                continue;
-            }
-            let mf = mi as f32;
-            let n_new = s.n + ALPHA * mf;
-            let r_new = s.radius * (n_new / (s.n + mf)).sqrt();
-            s.tau = (s.tau + vp.beta * phi[i]) * (r_new * r_new / (s.radius * s.radius));
-            s.n = n_new;
-            s.radius = r_new;
-        }
-        done += 1;
-        progress(u64::from(done), u64::from(settings.iterations));
+        progress(u64::from(state.iterations_done()), u64::from(settings.iterations));
     }
-
-    let mut film = Film::new(w, h);
-    let n_photons = f64::from(done) * settings.photons_per_iteration as f64;
-    for (i, s) in state.iter().enumerate() {
-        let mut l = s.ld / done.max(1) as f32;
-        if n_photons > 0.0 {
-            let area = f64::from(PI) * f64::from(s.radius) * f64::from(s.radius);
-            l += s.tau * (1.0 / (n_photons * area)) as f32;
-        }
-        let (x, y) = (i as u32 % w, i as u32 / w);
-        film.pixel_mut(x, y)
-            .add(if l.is_finite() { l } else { Rgb::BLACK }, 1.0);
-    }
+    let done = state.iterations_done();
     SppmOutput {
-        film,
+        film: state.film(settings),
         trace,
-        photons: n_photons as u64,
+        photons: u64::from(done) * settings.photons_per_iteration,
         iterations: done,
     }
+}
+
+/// Run the next iteration of `state` (camera pass, grid, photon pass, update) in the
+/// current rayon pool and return its ray counts. When `cancel` is set before it completes,
+/// returns `None` and leaves `state` as it was, so that a render stopped here and
+/// continued later is the same as one never stopped.
+pub fn iterate(
+    scene: &Scene,
+    settings: &SppmSettings,
+    state: &mut SppmState,
+    cancel: &AtomicBool,
+) -> Option<TraceStats> {
+    let (w, h) = (scene.film.width, scene.film.height);
+    assert_eq!(
+        (state.width(), state.height()),
+        (w, h),
+        "SPPM state for another film size"
+    );
+    let pixel_count = state.pixels.len();
+    let iteration = state.iterations_done;
+    let cancelled = || cancel.load(Ordering::Relaxed);
+    if cancelled() {
+        return None;
+    }
+    let mut trace = TraceStats::default();
+    // Camera pass.
+    let camera: Vec<(visible::CameraResult, TraceStats)> = (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| visible::trace_row(scene, settings, y, iteration))
+        .collect();
+    if cancelled() {
+        return None;
+    }
+    let mut points = Vec::with_capacity(pixel_count);
+    let mut vps = Vec::with_capacity(pixel_count);
+    let mut ld = Vec::with_capacity(pixel_count);
+    for (i, (c, t)) in camera.into_iter().enumerate() {
+        trace += t;
+        if let Some(vp) = c.vp {
+            points.push((i as u32, vp.p, state.pixels[i].radius));
+        }
+        vps.push(c.vp);
+        ld.push(c.ld);
+    }
+
+    // Grid of the visible points.
+    let grid = PointGrid::new(&points);
+
+    // Photon pass, deposits gathered per chunk (chunks after a cancel are skipped).
+    let chunks = settings.photons_per_iteration.div_ceil(PHOTON_CHUNK);
+    let pixels = &state.pixels;
+    let deposits: Vec<(Vec<(u32, Rgb)>, TraceStats)> = (0..chunks)
+        .into_par_iter()
+        .map(|chunk| {
+            if cancelled() {
+                return Default::default();
+            }
+            let start = chunk * PHOTON_CHUNK;
+            let end = (start + PHOTON_CHUNK).min(settings.photons_per_iteration);
+            let radius = |i: u32| pixels[i as usize].radius;
+            photons::trace_chunk(scene, settings, iteration, start..end, &grid, &vps, &radius)
+        })
+        .collect();
+    if cancelled() {
+        return None;
+    }
+    let mut phi = vec![Rgb::BLACK; pixel_count];
+    let mut m = vec![0u32; pixel_count];
+    for (list, t) in deposits {
+        trace += t;
+        for (i, f) in list {
+            phi[i as usize] += f;
+            m[i as usize] += 1;
+        }
+    }
+
+    // Progressive update (alpha = 2/3; Hachisuka and Jensen 2009, eqs. 6 and 10).
+    const ALPHA: f32 = 2.0 / 3.0;
+    for (i, s) in state.pixels.iter_mut().enumerate() {
+        s.ld += ld[i];
+        let (Some(vp), mi) = (vps[i], m[i]) else { continue };
+        if mi == 0 {
+            continue;
+        }
+        let mf = mi as f32;
+        let n_new = s.n + ALPHA * mf;
+        let r_new = s.radius * (n_new / (s.n + mf)).sqrt();
+        s.tau = (s.tau + vp.beta * phi[i]) * (r_new * r_new / (s.radius * s.radius));
+        s.n = n_new;
+        s.radius = r_new;
+    }
+    state.iterations_done += 1;
+    Some(trace)
 }
