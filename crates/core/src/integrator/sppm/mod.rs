@@ -128,6 +128,22 @@ pub fn render(
     progress: &(dyn Fn(u64, u64) + Sync),
     cancel: &AtomicBool,
 ) -> SppmOutput {
+    render_observed(scene, settings, progress, cancel, None)
+}
+
+/// What [`render_observed`] calls after each iteration with the iterations done and the
+/// image so far; returning `false` stops the render there (a time budget, say).
+pub type IterationObserver<'a> = &'a mut (dyn FnMut(u32, &Film) -> bool + Send);
+
+/// [`render`], with `observe` (when given) shown the image after every iteration
+/// (convergence studies); the final image is the same bytes as without it.
+pub fn render_observed(
+    scene: &Scene,
+    settings: &SppmSettings,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+    mut observe: Option<IterationObserver<'_>>,
+) -> SppmOutput {
     let (w, h) = (scene.film.width, scene.film.height);
     let pixel_count = (w * h) as usize;
     let mut state = vec![
@@ -201,8 +217,24 @@ pub fn render(
         }
         done += 1;
         progress(u64::from(done), u64::from(settings.iterations));
+        if let Some(f) = observe.as_mut() {
+            if !f(done, &estimate(&state, done, settings, w, h)) {
+                break;
+            }
+        }
     }
 
+    let n_photons = f64::from(done) * settings.photons_per_iteration as f64;
+    SppmOutput {
+        film: estimate(&state, done, settings, w, h),
+        trace,
+        photons: n_photons as u64,
+        iterations: done,
+    }
+}
+
+/// The image after `done` iterations: `Ld / done + tau / (N_photons pi r^2)` per pixel.
+fn estimate(state: &[PixelState], done: u32, settings: &SppmSettings, w: u32, h: u32) -> Film {
     let mut film = Film::new(w, h);
     let n_photons = f64::from(done) * settings.photons_per_iteration as f64;
     for (i, s) in state.iter().enumerate() {
@@ -215,10 +247,5 @@ pub fn render(
         film.pixel_mut(x, y)
             .add(if l.is_finite() { l } else { Rgb::BLACK }, 1.0);
     }
-    SppmOutput {
-        film,
-        trace,
-        photons: n_photons as u64,
-        iterations: done,
-    }
+    film
 }
