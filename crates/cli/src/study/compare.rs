@@ -212,7 +212,10 @@ fn integrator_report(
             sample_unit: r.sample_unit,
             mean: r.stats.mean.to_array(),
             mean_luminance: r.stats.mean.luminance(),
-            variance: (r.kind != IntegratorKind::Sppm).then_some(r.stats.mean_variance),
+            // SPPM keeps no per-pixel variance and light tracing only splats (whose
+            // variance the film does not track): no column for them.
+            variance: (!matches!(r.kind, IntegratorKind::Sppm | IntegratorKind::LightPath))
+                .then_some(r.stats.mean_variance),
             rel_mse: r.stats.rel_mse,
             seconds: r.seconds,
             rays: r.rays,
@@ -240,7 +243,8 @@ fn integrator_report(
         y_label: "relative MSE vs reference",
         title: format!("{stem}: error against render time"),
         footnote: format!(
-            "budget: {budget_text}; rel. MSE against {reference_text}; efficiency = 1 / (rel. MSE x time)"
+            "budget: {budget_text}; rel. MSE against {reference_text}; efficiency = 1 / (rel. MSE x time); \
+             variance: of the pixels' own samples (splats not counted)"
         ),
     })
 }
