@@ -1,4 +1,4 @@
-//! Whole-image measurements of an estimate: mean radiance, the average per-pixel variance
+//! Whole-image measurements of an estimate (pixel samples plus splats): mean radiance, the average per-pixel variance
 //! (the noise a viewer sees, from each pixel's own samples), and the relative mean squared
 //! error against a reference.
 
@@ -27,22 +27,22 @@ impl FilmStatistics {
     /// When the reference has a different number of pixels.
     #[must_use]
     pub fn measure(film: &Film, reference: Option<&[Rgb]>) -> Self {
-        let pixels = film.pixels();
-        let n = pixels.len().max(1) as f64;
+        // The estimate includes the splats (light tracing, BDPT's t = 1); the variance is
+        // the pixels' own samples' only.
+        let image = film.mean_image();
+        let n = image.len().max(1) as f64;
         let mut sum = [0.0f64; 3];
         let mut var = 0.0f64;
-        for p in pixels {
-            let m = p.mean();
+        for (p, m) in film.pixels().iter().zip(&image) {
             for (c, s) in sum.iter_mut().enumerate() {
                 *s += f64::from(m[c]);
             }
             var += f64::from(p.variance_of_mean().luminance());
         }
         let rel_mse = reference.map(|r| {
-            assert_eq!(r.len(), pixels.len(), "reference of a different size");
+            assert_eq!(r.len(), image.len(), "reference of a different size");
             let mut e = 0.0f64;
-            for (p, r) in pixels.iter().zip(r) {
-                let m = p.mean();
+            for (m, r) in image.iter().zip(r) {
                 for c in 0..3 {
                     let d = f64::from(m[c]) - f64::from(r[c]);
                     e += d * d / (f64::from(r[c]) * f64::from(r[c]) + REL_MSE_EPSILON);
@@ -75,5 +75,20 @@ mod tests {
         assert!((s.mean_variance - 0.5).abs() < 1e-5, "{}", s.mean_variance);
         // Pixel 0 exact; pixel 1 off by 1 on a reference of 1: 1 / 1.01 per channel, averaged over 2 pixels.
         assert!((s.rel_mse.unwrap() - 0.5 / 1.01).abs() < 1e-9);
+    }
+
+    #[test]
+    fn splats_count_in_the_mean_and_the_error() {
+        let mut f = Film::new(1, 1);
+        f.pixel_mut(0, 0).add(Rgb::splat(1.0), 1.0);
+        f.add_samples_per_pixel(2);
+        assert!(f.add_splat(&crate::film::Splat {
+            p_film: crate::math::Vec2::new(0.5, 0.5),
+            l: Rgb::splat(4.0),
+        }));
+        // Estimate 1 + 4 / 2 = 3 against a reference of 3: no error.
+        let s = FilmStatistics::measure(&f, Some(&[Rgb::splat(3.0)]));
+        assert!((s.mean.r - 3.0).abs() < 1e-6, "{:?}", s.mean);
+        assert!(s.rel_mse.unwrap() < 1e-12);
     }
 }

@@ -118,6 +118,22 @@ pub fn render(
     progress: &(dyn Fn(u64, u64) + Sync),
     cancel: &AtomicBool,
 ) -> SppmOutput {
+    render_observed(scene, settings, progress, cancel, None)
+}
+
+/// What [`render_observed`] calls after each iteration with the iterations done and the
+/// image so far; returning `false` stops the render there (a time budget, say).
+pub type IterationObserver<'a> = &'a mut (dyn FnMut(u32, &Film) -> bool + Send);
+
+/// [`render`], with `observe` (when given) shown the image after every iteration
+/// (convergence studies); the final image is the same bytes as without it.
+pub fn render_observed(
+    scene: &Scene,
+    settings: &SppmSettings,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+    mut observe: Option<IterationObserver<'_>>,
+) -> SppmOutput {
     let mut state = SppmState::new(scene.film.width, scene.film.height, settings);
     let mut trace = TraceStats::default();
     while state.iterations_done() < settings.iterations {
@@ -126,6 +142,11 @@ pub fn render(
             None => break,
         }
         progress(u64::from(state.iterations_done()), u64::from(settings.iterations));
+        if let Some(f) = observe.as_mut() {
+            if !f(state.iterations_done(), &state.film(settings)) {
+                break;
+            }
+        }
     }
     let done = state.iterations_done();
     SppmOutput {
