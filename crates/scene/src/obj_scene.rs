@@ -38,15 +38,46 @@ const DEFAULT_IOR: f32 = 1.5;
 pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = path.display().to_string().into();
     let loc = Location::file_only(file.clone());
-    let options = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ..tobj::LoadOptions::default()
-    };
-    let (models, materials) = tobj::load_obj(path, &options).map_err(|e| match e {
+    let (models, materials) = tobj::load_obj(path, &OPTIONS).map_err(|e| match e {
         tobj::LoadError::OpenFileFailed => SceneError::io(&loc, "cannot open the OBJ file"),
         e => SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")),
     })?;
+    let dir = path.parent().unwrap_or_else(|| Path::new(""));
+    build(path, &file, dir, &models, materials)
+}
+
+/// [`load_obj_scene`] on OBJ text in memory, named `file`, whose `mtllib` reads `mtl`
+/// (textures are looked for in `dir`).
+///
+/// # Errors
+/// As [`load_obj_scene`].
+pub fn load_obj_scene_bytes(obj: &[u8], mtl: Option<&[u8]>, file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
+    let name: Arc<str> = file.into();
+    let loc = Location::file_only(name.clone());
+    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(obj), &OPTIONS, |_| match mtl {
+        Some(m) => tobj::load_mtl_buf(&mut std::io::Cursor::new(m)),
+        None => Err(tobj::LoadError::OpenFileFailed),
+    })
+    .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
+    build(Path::new(file), &name, dir, &models, materials)
+}
+
+/// How OBJ files are read: one index per vertex, polygons fan-triangulated.
+const OPTIONS: tobj::LoadOptions = tobj::LoadOptions {
+    single_index: true,
+    triangulate: true,
+    ignore_points: true,
+    ignore_lines: true,
+};
+
+fn build(
+    path: &Path,
+    file: &Arc<str>,
+    dir: &Path,
+    models: &[tobj::Model],
+    materials: Result<Vec<tobj::Material>, tobj::LoadError>,
+) -> Result<LoadedScene, SceneError> {
+    let loc = Location::file_only(file.clone());
     let mut warnings = Vec::new();
     let materials = materials.unwrap_or_else(|e| {
         if !models.iter().all(|m| m.mesh.material_id.is_none()) || !matches!(e, tobj::LoadError::OpenFileFailed) {
@@ -56,15 +87,14 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         }
         Vec::new()
     });
-    let dir = path.parent().unwrap_or_else(|| Path::new("")).to_path_buf();
     let mut desc = crate::framing::model_scene();
     let mut converter = Converter {
         file: file.clone(),
-        dir,
+        dir: dir.to_path_buf(),
         images: HashMap::new(),
         ids: HashMap::new(),
     };
-    for model in &models {
+    for model in models {
         if model.mesh.indices.is_empty() {
             continue;
         }
@@ -83,7 +113,7 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     if desc.shapes.is_empty() {
         return Err(SceneError::invalid(&loc, "the OBJ file has no faces"));
     }
-    crate::framing::add_defaults(&mut desc, &file, false, &mut warnings);
+    crate::framing::add_defaults(&mut desc, file, false, &mut warnings);
     Ok(LoadedScene {
         description: desc,
         output_filename: None,

@@ -449,3 +449,15 @@ fn malformed_files_name_the_file_and_the_json_path() {
     std::fs::write(&path, b"glTF\x02\0\0\0\x10\0\0\0garbage!").unwrap();
     assert!(load(&path).is_err());
 }
+
+#[test]
+fn the_fuzz_seeds_are_valid_scenes() {
+    // The seeds should exercise the whole loader, not stop at the first error.
+    let seeds = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/seeds/gltf");
+    for name in ["scene.gltf", "scene.glb"] {
+        let s = load(&seeds.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(s.description.shapes.len(), 4, "{name}");
+        assert!(matches!(s.description.lights[..], [LightDesc::Spot(_)]), "{name}");
+        mcrender_core::scene::Scene::build(&s.description).unwrap();
+    }
+}

@@ -112,18 +112,29 @@ fn mtl_materials_map_to_diffuse_texture_conductor_coated_and_dielectric() {
     else {
         panic!("{:?}", m(3))
     };
-    assert_eq!((reflectance.constant(), u_roughness.constant(), *eta), (Some(Rgb::splat(0.5)), Some(alpha(18.0)), 1.5));
+    assert_eq!(
+        (reflectance.constant(), u_roughness.constant(), *eta),
+        (Some(Rgb::splat(0.5)), Some(alpha(18.0)), 1.5)
+    );
     let MaterialDesc::Dielectric { eta, .. } = m(4) else {
         panic!("{:?}", m(4))
     };
     assert_eq!(*eta, 1.33);
     // The quad was triangulated and keeps its attributes.
-    let mcrender_core::scene::GeometryDesc::TriangleMesh(q) = &d.shapes[0].geometry else { panic!() };
+    let mcrender_core::scene::GeometryDesc::TriangleMesh(q) = &d.shapes[0].geometry else {
+        panic!()
+    };
     assert_eq!((q.indices.len(), q.normals.is_some(), q.uvs.is_some()), (6, true, true));
     let w = s.warnings.join("\n");
     assert!(w.contains("map_Bump / norm is ignored"), "{w}");
-    assert!(w.contains("model.obj: no camera; looking at the bounding box from"), "{w}");
-    assert!(w.contains("model.obj: no light; adding a uniform white environment light"), "{w}");
+    assert!(
+        w.contains("model.obj: no camera; looking at the bounding box from"),
+        "{w}"
+    );
+    assert!(
+        w.contains("model.obj: no light; adding a uniform white environment light"),
+        "{w}"
+    );
     assert!(matches!(d.lights[..], [LightDesc::UniformInfinite { radiance }] if radiance == Rgb::WHITE));
     d.validate().unwrap();
 }
