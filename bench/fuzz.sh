@@ -4,7 +4,7 @@
 #   bench/fuzz.sh TARGET SECONDS [extra libFuzzer flags...]
 #   bench/fuzz.sh list
 #
-# TARGET: tokenizer, parser, loader, ply, png, exr, pfm, tga (fuzz/fuzz_targets/). Needs a
+# TARGET: tokenizer, parser, loader, ply, png, exr, pfm, tga, obj, gltf (fuzz/fuzz_targets/). Needs a
 # nightly toolchain and cargo-fuzz (`cargo install cargo-fuzz`). The working corpus grows in
 # fuzz/corpus/TARGET (seeded from fuzz/seeds/TARGET and fuzz/regressions/TARGET); crashes land
 # in fuzz/artifacts/TARGET. A crash input, once fixed, belongs in fuzz/regressions/TARGET, which
@@ -13,7 +13,7 @@
 # and the final "cov:" / "ft:" figures are its coverage (edges, features).
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
-targets="tokenizer parser loader ply png exr pfm tga"
+targets="tokenizer parser loader ply png exr pfm tga obj gltf"
 if [[ "${1:-}" == list || $# -lt 2 ]]; then
     echo "usage: bench/fuzz.sh TARGET SECONDS [libFuzzer flags]; targets: $targets" >&2
     [[ "${1:-}" == list ]] && exit 0 || exit 2

@@ -16,7 +16,18 @@ use crate::source::MemoryFiles;
 pub const MEMORY_LIMIT: u64 = 256 << 20;
 
 /// The targets, by the name of their fuzz target and corpus directory.
-pub const TARGETS: &[&str] = &["tokenizer", "parser", "loader", "ply", "png", "exr", "pfm", "tga"];
+pub const TARGETS: &[&str] = &[
+    "tokenizer",
+    "parser",
+    "loader",
+    "ply",
+    "png",
+    "exr",
+    "pfm",
+    "tga",
+    "obj",
+    "gltf",
+];
 
 /// Run `data` through the target named `target` (one of [`TARGETS`]).
 ///
@@ -32,6 +43,8 @@ pub fn run(target: &str, data: &[u8]) {
         "exr" => image(ImageFormat::Exr, data),
         "pfm" => image(ImageFormat::Pfm, data),
         "tga" => image(ImageFormat::Tga, data),
+        "obj" => obj(data),
+        "gltf" => gltf(data),
         other => panic!("unknown fuzz target {other}"),
     }
 }
@@ -105,6 +118,41 @@ fn load(files: MemoryFiles) {
     match load_file_with(Path::new("fuzz.pbrt"), &options) {
         Ok(scene) => {
             // What the renderer would do next: build the render-ready scene.
+            if let Err(e) = mcrender_core::scene::Scene::build(&scene.description) {
+                check_message(&e.to_string());
+            }
+        }
+        Err(e) => check_message(&e.to_string()),
+    }
+}
+
+/// A directory no fuzz input can name files in: the OBJ and glTF targets read no files.
+const NO_DIR: &str = "/nonexistent-mcrender-fuzz-dir";
+
+/// An OBJ scene: the OBJ text, then optionally `FILE_MARKER scene.mtl\n` and the MTL text.
+pub fn obj(data: &[u8]) {
+    let parts = split(data, FILE_MARKER);
+    let mtl = parts.get(1).map(|p| match p.iter().position(|&b| b == b'\n') {
+        Some(i) => &p[i + 1..],
+        None => &[][..],
+    });
+    built(crate::obj_scene::load_obj_scene_bytes(
+        parts[0],
+        mtl,
+        "fuzz.obj",
+        Path::new(NO_DIR),
+    ));
+}
+
+/// A glTF document (JSON or GLB) with embedded buffers and images.
+pub fn gltf(data: &[u8]) {
+    built(crate::gltf::load_gltf_slice(data, "fuzz.gltf", Path::new(NO_DIR)));
+}
+
+/// Build the render-ready scene of a loaded one, checking every error message.
+fn built(loaded: Result<crate::pbrt::LoadedScene, crate::error::SceneError>) {
+    match loaded {
+        Ok(scene) => {
             if let Err(e) = mcrender_core::scene::Scene::build(&scene.description) {
                 check_message(&e.to_string());
             }

@@ -5,18 +5,22 @@
 //! * [`pbrt`]: the pbrt-v4 scene format ([`pbrt::load_file`], [`pbrt::load_str`]);
 //! * [`load`]: the front door, any format by extension;
 //! * [`mitsuba`]: Mitsuba 3 XML scenes ([`mitsuba::load_file`]);
-//! * [`obj`]: Wavefront OBJ meshes;
+//! * [`obj`]: Wavefront OBJ meshes; [`obj_scene`]: an OBJ file as a whole scene;
+//! * [`gltf`]: glTF 2.0 scenes (`.gltf`, `.glb`);
 //! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
 //!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
 
 mod error;
+mod framing;
 pub mod fuzzing;
+pub mod gltf;
 pub mod image_io;
 pub mod limits;
 mod load;
 pub mod mitsuba;
 pub mod obj;
+pub mod obj_scene;
 pub mod pbrt;
 pub mod ply;
 pub mod source;

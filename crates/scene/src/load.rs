@@ -1,5 +1,6 @@
 //! The front door: [`load`] reads any supported scene format, chosen by the file's
-//! extension (`.pbrt` and anything unknown: pbrt-v4; `.xml`: Mitsuba).
+//! extension (`.pbrt` and anything unknown: pbrt-v4; `.xml`: Mitsuba; `.obj`: OBJ
+//! as a whole scene; `.gltf`, `.glb`: glTF 2.0).
 
 use std::path::Path;
 
@@ -24,6 +25,10 @@ pub enum SceneFormat {
     Pbrt,
     /// Mitsuba 3 XML.
     Mitsuba,
+    /// Wavefront OBJ (with MTL) as a whole scene.
+    Obj,
+    /// glTF 2.0 (`.gltf` or `.glb`).
+    Gltf,
 }
 
 impl SceneFormat {
@@ -37,6 +42,8 @@ impl SceneFormat {
             .as_deref()
         {
             Some("xml") => Self::Mitsuba,
+            Some("obj") => Self::Obj,
+            Some("gltf" | "glb") => Self::Gltf,
             _ => Self::Pbrt,
         }
     }
@@ -64,5 +71,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Scen
             },
         ),
         SceneFormat::Mitsuba => crate::mitsuba::load_file_with(path, &options.defines, options.limits),
+        SceneFormat::Obj => crate::obj_scene::load_obj_scene(path),
+        SceneFormat::Gltf => crate::gltf::load_gltf(path),
     }
 }

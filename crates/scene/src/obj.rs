@@ -20,11 +20,20 @@ pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
         ..tobj::LoadOptions::default()
     };
     let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
+    let meshes: Vec<&tobj::Mesh> = models.iter().map(|m| &m.mesh).collect();
+    mesh_of(path, &meshes)
+}
+
+/// The meshes `parts` of `path` merged into one, with normals and uvs kept only when every
+/// vertex has valid ones.
+///
+/// # Errors
+/// As [`read_obj_mesh`].
+pub fn mesh_of(path: &Path, parts: &[&tobj::Mesh]) -> Result<TriangleMeshDesc, String> {
     let mut mesh = TriangleMeshDesc::default();
     let (mut normals, mut uvs) = (Vec::new(), Vec::new());
     let (mut all_normals, mut all_uvs) = (true, true);
-    for model in &models {
-        let m = &model.mesh;
+    for m in parts {
         let base = mesh.positions.len() as u32;
         let n = m.positions.len() / 3;
         mesh.positions

@@ -17,6 +17,7 @@ mod flags;
 pub mod fresnel;
 mod henyey_greenstein;
 mod layered;
+mod metallic_roughness;
 pub mod microfacet;
 mod thin_dielectric;
 mod transport;
@@ -28,6 +29,7 @@ pub use diffuse_transmission::DiffuseTransmissionBxdf;
 pub use flags::BxdfFlags;
 pub use henyey_greenstein::{HenyeyGreenstein, PhaseSample};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf, OpaqueBase};
+pub use metallic_roughness::MetallicRoughnessBxdf;
 pub use microfacet::{roughness_to_alpha, TrowbridgeReitz};
 pub use thin_dielectric::ThinDielectricBxdf;
 pub use transport::{ReflTrans, TransportMode};
@@ -73,6 +75,8 @@ pub enum Bxdf {
     CoatedDiffuse(CoatedDiffuseBxdf),
     /// A dielectric coat over a conductor (stochastic).
     CoatedConductor(CoatedConductorBxdf),
+    /// glTF 2.0's metallic-roughness BRDF.
+    MetallicRoughness(MetallicRoughnessBxdf),
 }
 
 macro_rules! dispatch {
@@ -85,6 +89,7 @@ macro_rules! dispatch {
             Bxdf::DiffuseTransmission($b) => $e,
             Bxdf::CoatedDiffuse($b) => $e,
             Bxdf::CoatedConductor($b) => $e,
+            Bxdf::MetallicRoughness($b) => $e,
         }
     };
 }
@@ -173,6 +178,7 @@ impl Bsdf {
                 l.top.distrib.regularize();
                 l.bottom.distrib.regularize();
             }
+            Bxdf::MetallicRoughness(m) => m.distrib.regularize(),
             Bxdf::Diffuse(_) | Bxdf::ThinDielectric(_) | Bxdf::DiffuseTransmission(_) => {}
         }
     }

@@ -14,7 +14,7 @@
 
 use crate::bsdf::{
     roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf, LayeredBxdf,
-    ThinDielectricBxdf, TrowbridgeReitz,
+    MetallicRoughnessBxdf, ThinDielectricBxdf, TrowbridgeReitz,
 };
 use crate::color::Rgb;
 use crate::sampling::hash_u64s;
@@ -159,6 +159,11 @@ impl Material {
                     && albedo.is_constant()
                     && g.is_constant())
             }
+            Self::MetallicRoughness {
+                base_color,
+                metallic,
+                roughness,
+            } => !(base_color.is_constant() && metallic.is_constant() && roughness.is_constant()),
             Self::Mix { amount, .. } => !amount.is_constant(),
             Self::Interface => false,
         }
@@ -283,6 +288,15 @@ impl Material {
                     n_samples: (*n_samples).max(1),
                 })
             }
+            Self::MetallicRoughness {
+                base_color,
+                metallic,
+                roughness,
+            } => Bxdf::MetallicRoughness(MetallicRoughnessBxdf::new(
+                base_color.evaluate(ctx),
+                metallic.evaluate(ctx),
+                roughness.evaluate(ctx),
+            )),
             Self::Mix { .. } | Self::Interface => return None,
         };
         Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))

@@ -222,6 +222,17 @@ impl SceneDescription {
                         ));
                     }
                 }
+                MaterialDesc::MetallicRoughness {
+                    base_color,
+                    metallic,
+                    roughness,
+                } => {
+                    check_non_negative(&format!("base colour of material {i}"), &rgb_constant(base_color))?;
+                    check_non_negative(
+                        &format!("metallic and roughness of material {i}"),
+                        &float_constants(&[metallic, roughness]),
+                    )?;
+                }
                 MaterialDesc::Interface => {}
             }
         }

@@ -475,6 +475,16 @@ pub enum MaterialDesc {
         /// Probability of the second, clamped to [0, 1] (pbrt default 0.5).
         amount: FloatTexture,
     },
+    /// glTF 2.0's metallic-roughness material (the BRDF of the glTF specification's
+    /// Appendix B, see `bsdf::MetallicRoughnessBxdf`).
+    MetallicRoughness {
+        /// Base colour, in [0, 1] (clamped per hit).
+        base_color: RgbTexture,
+        /// Metalness, in [0, 1] (clamped per hit).
+        metallic: FloatTexture,
+        /// Perceptual roughness in [0, 1]; the GGX alpha is its square.
+        roughness: FloatTexture,
+    },
     /// No surface at all (pbrt `interface`, which marks medium boundaries): rays pass
     /// straight through, shadow rays included.
     Interface,

@@ -40,7 +40,7 @@ pub(crate) mod spectra;
 pub(crate) mod spectrum_rgb;
 mod textures;
 mod tokenizer;
-mod transform;
+pub(crate) mod transform;
 
 use std::path::Path;
 use std::sync::Arc;

@@ -1,0 +1,298 @@
+//! glTF materials to mcrender's: the metallic-roughness model
+//! ([`MaterialDesc::MetallicRoughness`], the BRDF of the glTF spec's Appendix B) with its
+//! base colour and metallic-roughness textures (factors multiplied into the texels), the
+//! emission (`emissiveFactor` times `KHR_materials_emissive_strength`, times the mean of
+//! an `emissiveTexture`) as an area light, and `KHR_materials_transmission` (factor >= 0.5)
+//! with `KHR_materials_ior` as a dielectric of that index and roughness. Textures are
+//! bilinear, wrapped as the sampler's `wrapS`, and honour `KHR_texture_transform` without
+//! rotation. Ignored, with a warning: normal and occlusion textures, a second texture
+//! coordinate set, alpha blending and masking.
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+use gltf::texture::WrappingMode;
+use mcrender_core::color::Rgb;
+use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc, MaterialId, RgbTexture};
+use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
+
+use super::data::{error_text, Buffers};
+
+/// A converted material: its index and the emission of the shapes that use it.
+#[derive(Clone, Copy, Debug)]
+pub struct Converted {
+    /// Index into the scene's materials.
+    pub material: MaterialId,
+    /// Emission, when the material is emissive.
+    pub area_light: Option<AreaLightDesc>,
+}
+
+/// A decoded glTF image: width, height, and linear-or-encoded texel values in [0, 1].
+struct Image {
+    width: u32,
+    height: u32,
+    texels: Vec<Rgb>,
+}
+
+/// Converts the materials of one document, each once.
+pub struct Materials<'a> {
+    buffers: &'a Buffers,
+    dir: &'a Path,
+    images: HashMap<usize, Arc<Image>>,
+    done: HashMap<Option<usize>, Converted>,
+}
+
+/// The sRGB transfer curve, decoded (IEC 61966-2-1).
+fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+impl<'a> Materials<'a> {
+    /// A converter reading images from `buffers` and files in `dir`.
+    #[must_use]
+    pub fn new(buffers: &'a Buffers, dir: &'a Path) -> Self {
+        Self {
+            buffers,
+            dir,
+            images: HashMap::new(),
+            done: HashMap::new(),
+        }
+    }
+
+    /// The material `m` (converted on first use), appended to `materials`.
+    ///
+    /// # Errors
+    /// `materials[i]...: ...` when a texture cannot be read.
+    pub fn get(
+        &mut self,
+        m: &gltf::Material<'_>,
+        materials: &mut Vec<MaterialDesc>,
+        warnings: &mut Vec<String>,
+    ) -> Result<Converted, String> {
+        if let Some(c) = self.done.get(&m.index()) {
+            return Ok(*c);
+        }
+        let path = m
+            .index()
+            .map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
+        let (desc, area_light) = self.convert(m, &path, warnings)?;
+        materials.push(desc);
+        let c = Converted {
+            material: (materials.len() - 1) as MaterialId,
+            area_light,
+        };
+        self.done.insert(m.index(), c);
+        Ok(c)
+    }
+
+    fn convert(
+        &mut self,
+        m: &gltf::Material<'_>,
+        path: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<(MaterialDesc, Option<AreaLightDesc>), String> {
+        if m.normal_texture().is_some() {
+            warnings.push(format!("{path}.normalTexture is ignored (no normal mapping yet)"));
+        }
+        if m.occlusion_texture().is_some() {
+            warnings.push(format!(
+                "{path}.occlusionTexture is ignored (occlusion is computed, not painted)"
+            ));
+        }
+        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
+            warnings.push(format!("{path}.alphaMode {:?} is rendered as OPAQUE", m.alpha_mode()));
+        }
+        let pbr = m.pbr_metallic_roughness();
+        let [r, g, b, _] = pbr.base_color_factor();
+        let factor = Rgb::new(r, g, b);
+        let base_color: RgbTexture = match pbr.base_color_texture() {
+            Some(info) => {
+                let img = self.image(
+                    &info,
+                    &format!("{path}.pbrMetallicRoughness.baseColorTexture"),
+                    warnings,
+                )?;
+                let texels = img.texels.iter().map(|t| t.map(srgb_to_linear) * factor).collect();
+                bitmap(&info, &img, texels)
+            }
+            None => factor.into(),
+        };
+        let (metallic, roughness): (FloatTexture, FloatTexture) = match pbr.metallic_roughness_texture() {
+            Some(info) => {
+                let img = self.image(
+                    &info,
+                    &format!("{path}.pbrMetallicRoughness.metallicRoughnessTexture"),
+                    warnings,
+                )?;
+                // Metalness in the blue channel, roughness in the green (glTF 2.0, 3.9.2).
+                let metal = img
+                    .texels
+                    .iter()
+                    .map(|t| Rgb::splat(t.b * pbr.metallic_factor()))
+                    .collect();
+                let rough = img
+                    .texels
+                    .iter()
+                    .map(|t| Rgb::splat(t.g * pbr.roughness_factor()))
+                    .collect();
+                (bitmap(&info, &img, metal), bitmap(&info, &img, rough))
+            }
+            None => (pbr.metallic_factor().into(), pbr.roughness_factor().into()),
+        };
+        let strength = m.emissive_strength().unwrap_or(1.0);
+        let [er, eg, eb] = m.emissive_factor();
+        let mut emission = Rgb::new(er, eg, eb) * strength;
+        if let Some(info) = m.emissive_texture() {
+            let img = self.image(&info, &format!("{path}.emissiveTexture"), warnings)?;
+            let n = img.texels.len().max(1) as f32;
+            let mean = img.texels.iter().fold(Rgb::BLACK, |s, t| s + t.map(srgb_to_linear)) * (1.0 / n);
+            warnings.push(format!(
+                "{path}.emissiveTexture is averaged to one colour (mean {:.3} {:.3} {:.3})",
+                mean.r, mean.g, mean.b
+            ));
+            emission *= mean;
+        }
+        let area_light = (emission.max_component() > 0.0 && emission.is_finite()).then_some(AreaLightDesc {
+            radiance: emission,
+            two_sided: m.double_sided(),
+            power: None,
+        });
+        if let Some(t) = m.transmission() {
+            if t.transmission_texture().is_some() {
+                warnings.push(format!(
+                    "{path}.extensions.KHR_materials_transmission.transmissionTexture is ignored"
+                ));
+            }
+            if t.transmission_factor() >= 0.5 {
+                let alpha = pbr.roughness_factor().clamp(0.0, 1.0).powi(2);
+                let eta = m.ior().filter(|n| *n >= 1.0 && n.is_finite()).unwrap_or(1.5);
+                return Ok((
+                    MaterialDesc::Dielectric {
+                        eta,
+                        u_roughness: alpha.into(),
+                        v_roughness: alpha.into(),
+                        remap_roughness: false,
+                    },
+                    area_light,
+                ));
+            }
+        }
+        Ok((
+            MaterialDesc::MetallicRoughness {
+                base_color,
+                metallic,
+                roughness,
+            },
+            area_light,
+        ))
+    }
+
+    /// The image of texture `info`, decoded once (values as stored, in [0, 1]).
+    fn image(
+        &mut self,
+        info: &gltf::texture::Info<'_>,
+        path: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<Arc<Image>, String> {
+        if info.tex_coord() != 0 {
+            warnings.push(format!(
+                "{path}.texCoord {} is read as TEXCOORD_0 (one uv set)",
+                info.tex_coord()
+            ));
+        }
+        let source = info.texture().source();
+        if let Some(img) = self.images.get(&source.index()) {
+            return Ok(img.clone());
+        }
+        let ipath = format!("images[{}]", source.index());
+        if let gltf::image::Source::View { view, .. } = source.source() {
+            self.buffers.view(&view)?;
+        }
+        let data = gltf::image::Data::from_source(source.source(), Some(self.dir), &self.buffers.0)
+            .map_err(|e| format!("{path} ({ipath}): cannot read the image: {}", error_text(&e)))?;
+        let img = Arc::new(decode(&data).ok_or_else(|| format!("{ipath}: unexpected pixel data"))?);
+        self.images.insert(source.index(), img.clone());
+        Ok(img)
+    }
+}
+
+/// Texels of `data` as RGB in [0, 1] (grey and grey-alpha replicated; alpha dropped).
+fn decode(data: &gltf::image::Data) -> Option<Image> {
+    use gltf::image::Format;
+    let (channels, bytes) = match data.format {
+        Format::R8 => (1, 1),
+        Format::R8G8 => (2, 1),
+        Format::R8G8B8 => (3, 1),
+        Format::R8G8B8A8 => (4, 1),
+        Format::R16 => (1, 2),
+        Format::R16G16 => (2, 2),
+        Format::R16G16B16 => (3, 2),
+        Format::R16G16B16A16 => (4, 2),
+        Format::R32G32B32FLOAT => (3, 4),
+        Format::R32G32B32A32FLOAT => (4, 4),
+    };
+    let n = (data.width as usize).checked_mul(data.height as usize)?;
+    if data.pixels.len() != n.checked_mul(channels * bytes)? || n == 0 {
+        return None;
+    }
+    let value = |c: &[u8]| -> f32 {
+        match bytes {
+            1 => f32::from(c[0]) / 255.0,
+            2 => f32::from(u16::from_le_bytes([c[0], c[1]])) / 65535.0,
+            _ => f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
+        }
+    };
+    let texels = data
+        .pixels
+        .chunks_exact(channels * bytes)
+        .map(|px| {
+            let v = |i: usize| value(&px[i * bytes..(i + 1) * bytes]);
+            match channels {
+                1 | 2 => Rgb::splat(v(0)),
+                _ => Rgb::new(v(0), v(1), v(2)),
+            }
+        })
+        .collect();
+    Some(Image {
+        width: data.width,
+        height: data.height,
+        texels,
+    })
+}
+
+/// A bilinear bitmap of `texels` (the size of `img`) with `info`'s sampler and transform.
+/// Mesh uvs are stored with `v` flipped (`1 - v`, row 0 at the top as in glTF), so a
+/// glTF transform `uv' = uv * scale + offset` becomes `s = su u + du`, `t = sv v + dv`
+/// with `dv = 1 - scale_v - offset_v`.
+fn bitmap<T: mcrender_core::texture::TextureValue>(
+    info: &gltf::texture::Info<'_>,
+    img: &Image,
+    texels: Vec<Rgb>,
+) -> Texture<T> {
+    let (offset, scale) = info
+        .texture_transform()
+        .map_or(([0.0, 0.0], [1.0, 1.0]), |t| (t.offset(), t.scale()));
+    let wrap = match info.texture().sampler().wrap_s() {
+        WrappingMode::ClampToEdge => BitmapWrap::Clamp,
+        WrappingMode::MirroredRepeat => BitmapWrap::Mirror,
+        WrappingMode::Repeat => BitmapWrap::Repeat,
+    };
+    Texture::Bitmap(Arc::new(BitmapTexture {
+        mapping: TextureMapping::Uv {
+            su: scale[0],
+            sv: scale[1],
+            du: offset[0],
+            dv: 1.0 - scale[1] - offset[1],
+        },
+        width: img.width,
+        height: img.height,
+        texels: Arc::new(texels),
+        filter: BitmapFilter::Bilinear,
+        wrap,
+    }))
+}
