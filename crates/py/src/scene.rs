@@ -228,7 +228,7 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "bdpt", "lightpath" (or "sppm", read only).
+    /// The integrator: "path", "direct", "bdpt", "lightpath" (or "sppm" and "mlt", read only).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -237,6 +237,7 @@ impl PyScene {
             IntegratorKind::Bdpt => "bdpt",
             IntegratorKind::LightPath => "lightpath",
             IntegratorKind::Sppm => "sppm",
+            IntegratorKind::Mlt => "mlt",
         }
     }
 
@@ -249,7 +250,7 @@ impl PyScene {
             "lightpath" => IntegratorKind::LightPath,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\" (sppm has its own driver, not available from Python yet), found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\" or \"lightpath\" (sppm and mlt have their own drivers, not available from Python yet), found \"{value}\""
                 )))
             }
         };
