@@ -91,6 +91,11 @@ impl PyScene {
         if threads == Some(0) {
             return Err(PyValueError::new_err("threads: expected at least 1, found 0"));
         }
+        if desc.integrator.kind == IntegratorKind::Mlt {
+            return Err(PyValueError::new_err(
+                "mlt has its own driver, not available from Python yet: render it with `mcrender render`",
+            ));
+        }
         let whole = start == 0 && end.is_none() && window.is_none();
         if desc.integrator.kind == IntegratorKind::Sppm && !whole {
             return Err(PyValueError::new_err(
@@ -252,7 +257,8 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "bdpt", "lightpath" or "sppm".
+    /// The integrator: "path", "direct", "bdpt", "lightpath" or "sppm" (or "mlt", read only:
+    /// its driver is not available from Python yet).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -261,6 +267,7 @@ impl PyScene {
             IntegratorKind::Bdpt => "bdpt",
             IntegratorKind::LightPath => "lightpath",
             IntegratorKind::Sppm => "sppm",
+            IntegratorKind::Mlt => "mlt",
         }
     }
 
@@ -274,7 +281,7 @@ impl PyScene {
             "sppm" => IntegratorKind::Sppm,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\" or \"sppm\", found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\" or \"sppm\" (mlt has its own driver, not available from Python yet), found \"{value}\""
                 )))
             }
         };

@@ -12,6 +12,7 @@
 pub mod bdpt;
 mod direct;
 mod lightpath;
+pub mod mlt;
 mod path;
 mod roulette;
 pub mod sppm;
@@ -91,6 +92,7 @@ impl Integrator {
                 }))
             }
             IntegratorKind::Sppm => return Err(IntegratorError::OwnDriver { name: "sppm" }),
+            IntegratorKind::Mlt => return Err(IntegratorError::OwnDriver { name: "mlt" }),
             IntegratorKind::Path | IntegratorKind::Direct => {}
         }
         let delta_lights = scene.lights.iter().filter(|l| l.is_delta()).count();
@@ -103,7 +105,9 @@ impl Integrator {
         let max_depth = match s.kind {
             IntegratorKind::Path => s.max_depth,
             IntegratorKind::Direct => s.max_depth.min(1),
-            IntegratorKind::Bdpt | IntegratorKind::LightPath | IntegratorKind::Sppm => unreachable!("handled above"),
+            IntegratorKind::Bdpt | IntegratorKind::LightPath | IntegratorKind::Sppm | IntegratorKind::Mlt => {
+                unreachable!("handled above")
+            }
         };
         Ok(Self::Path(PathIntegrator {
             max_depth,

@@ -7,18 +7,22 @@ mod distribution;
 mod distribution_2d;
 mod hash;
 mod mis;
+mod mlt;
 mod rng;
 mod sampler;
 mod scramble;
+mod source;
 mod warp;
 
 pub use distribution::PiecewiseConstant1D;
 pub use distribution_2d::PiecewiseConstant2D;
 pub use hash::{hash_absorb, hash_float, hash_u64s, mix_bits};
 pub use mis::{balance_heuristic, power_heuristic};
+pub use mlt::MltSampler;
 pub use rng::Pcg32;
 pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, StratifiedSampler};
 pub use scramble::{nested_uniform_scramble, permutation_element};
+pub use source::SampleSource;
 pub use warp::*;
 
 /// The largest `f32` below 1: the upper end of every sample value.

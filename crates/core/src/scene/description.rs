@@ -192,6 +192,40 @@ pub enum IntegratorKind {
     /// Stochastic progressive photon mapping (`Integrator "sppm"`), rendered by its own
     /// driver (`integrator::sppm::render`).
     Sppm,
+    /// Metropolis light transport on primary sample space over BDPT paths (`Integrator
+    /// "mlt"`), rendered by its own driver (`integrator::mlt::render`).
+    Mlt,
+}
+
+/// Parameters of `Integrator "mlt"` (pbrt-v4's names and defaults; `maxdepth` is the
+/// integrator's own).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MltDesc {
+    /// Bootstrap samples per path depth (`bootstrapsamples`, default 100000).
+    pub bootstrap_samples: u32,
+    /// Markov chains (`chains`, default 1000).
+    pub chains: u32,
+    /// Mutations per pixel over all chains (`mutationsperpixel`, default 100).
+    pub mutations_per_pixel: u32,
+    /// Probability of a large step, a fresh uniform sample (`largestepprobability`, 0.3).
+    pub large_step_probability: f32,
+    /// Standard deviation of a small step's perturbation (`sigma`, default 0.01).
+    pub sigma: f32,
+    /// Roughen near-specular surfaces after a non-specular bounce (`regularize`).
+    pub regularize: bool,
+}
+
+impl Default for MltDesc {
+    fn default() -> Self {
+        Self {
+            bootstrap_samples: 100_000,
+            chains: 1000,
+            mutations_per_pixel: 100,
+            large_step_probability: 0.3,
+            sigma: 0.01,
+            regularize: false,
+        }
+    }
 }
 
 /// Settings of bidirectional path tracing (pbrt `Integrator "bdpt"`, plus a strategy
@@ -338,6 +372,8 @@ pub struct IntegratorDesc {
     pub bdpt: BdptDesc,
     /// SPPM parameters (used by [`IntegratorKind::Sppm`]).
     pub sppm: SppmDesc,
+    /// MLT parameters (used by [`IntegratorKind::Mlt`]).
+    pub mlt: MltDesc,
 }
 
 impl Default for IntegratorDesc {
@@ -350,6 +386,7 @@ impl Default for IntegratorDesc {
             russian_roulette: RussianRoulette::Throughput,
             bdpt: BdptDesc::default(),
             sppm: SppmDesc::default(),
+            mlt: MltDesc::default(),
         }
     }
 }

@@ -4,8 +4,8 @@
 use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
-    BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, RussianRoulette,
-    SamplerKind, SppmDesc,
+    BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MltDesc,
+    RussianRoulette, SamplerKind, SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -242,15 +242,16 @@ impl SceneBuilder {
             "bdpt" => IntegratorKind::Bdpt,
             "lightpath" => IntegratorKind::LightPath,
             "sppm" => IntegratorKind::Sppm,
+            "mlt" => IntegratorKind::Mlt,
             _ => IntegratorKind::Path,
         };
         match kind {
-            "path" | "direct" | "directlighting" | "bdpt" | "lightpath" | "sppm" => {}
+            "path" | "direct" | "directlighting" | "bdpt" | "lightpath" | "sppm" | "mlt" => {}
             "volpath" => self.warn(
                 loc,
                 "integrator \"volpath\" renders as \"path\" (participating media are not supported)",
             ),
-            "mlt" | "simplepath" | "randomwalk" | "ambientocclusion" | "simplevolpath" => {
+            "simplepath" | "randomwalk" | "ambientocclusion" | "simplevolpath" => {
                 self.warn(
                     loc,
                     format!("integrator \"{kind}\" is not implemented yet; using \"path\""),
@@ -295,6 +296,11 @@ impl SceneBuilder {
         } else {
             SppmDesc::default()
         };
+        let mlt = if integrator_kind == IntegratorKind::Mlt {
+            mlt_params(params)?
+        } else {
+            MltDesc::default()
+        };
         self.integrator = IntegratorDesc {
             kind: integrator_kind,
             max_depth: max_depth as u32,
@@ -303,6 +309,7 @@ impl SceneBuilder {
             russian_roulette,
             bdpt,
             sppm,
+            mlt,
         };
         self.warn_unused(params);
         Ok(())
@@ -435,6 +442,38 @@ fn sppm_params(params: &ParamSet) -> Result<SppmDesc, SceneError> {
         photons_per_iteration: (photons > 0).then_some(photons as u64),
         radius,
         seed,
+    })
+}
+
+/// `Integrator "mlt"`'s parameters: `bootstrapsamples`, `chains`, `mutationsperpixel`,
+/// `largestepprobability`, `sigma`, `regularize` (pbrt-v4's defaults).
+fn mlt_params(params: &ParamSet) -> Result<MltDesc, SceneError> {
+    let d = MltDesc::default();
+    let positive = |name: &str, default: u32| -> Result<u32, SceneError> {
+        let v = params.int(name, default as i32)?;
+        if v < 1 {
+            return Err(param_error(params, name, "must be at least 1"));
+        }
+        Ok(v as u32)
+    };
+    let bootstrap_samples = positive("bootstrapsamples", d.bootstrap_samples)?;
+    let chains = positive("chains", d.chains)?;
+    let mutations_per_pixel = positive("mutationsperpixel", d.mutations_per_pixel)?;
+    let large_step_probability = params.float("largestepprobability", d.large_step_probability)?;
+    if !(0.0..=1.0).contains(&large_step_probability) {
+        return Err(param_error(params, "largestepprobability", "must be in [0, 1]"));
+    }
+    let sigma = params.float("sigma", d.sigma)?;
+    if !(sigma.is_finite() && sigma > 0.0) {
+        return Err(param_error(params, "sigma", "must be a positive number"));
+    }
+    Ok(MltDesc {
+        bootstrap_samples,
+        chains,
+        mutations_per_pixel,
+        large_step_probability,
+        sigma,
+        regularize: params.bool("regularize", false)?,
     })
 }
 

@@ -14,7 +14,7 @@ use crate::bsdf::TransportMode;
 use crate::color::Rgb;
 use crate::integrator::TraceStats;
 use crate::math::Vec2;
-use crate::sampling::Sampler;
+use crate::sampling::SampleSource;
 use crate::shape::Interaction;
 
 /// The contribution of one strategy.
@@ -35,7 +35,7 @@ pub fn connect(
     s: usize,
     t: usize,
     mis: MisMode,
-    sampler: &mut Sampler,
+    sampler: &mut impl SampleSource,
     stats: &mut TraceStats,
 ) -> Option<Connection> {
     let scene = ctx.scene;

@@ -15,10 +15,10 @@
 //! the density estimate's relative error on the light those paths carry (pbrt-v4 has the
 //! same limitation).
 
-mod connect;
-mod mis;
-mod subpath;
-mod vertex;
+pub(crate) mod connect;
+pub(crate) mod mis;
+pub(crate) mod subpath;
+pub(crate) mod vertex;
 
 pub use mis::MisMode;
 

@@ -10,14 +10,14 @@ use crate::bsdf::TransportMode;
 use crate::color::Rgb;
 use crate::integrator::TraceStats;
 use crate::math::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::SampleSource;
 use crate::shape::Interaction;
 
 /// The camera subpath of `ray`: the camera vertex, then at most `max_vertices - 1` more.
 pub fn camera_subpath(
     ctx: &Context<'_>,
     ray: Ray,
-    sampler: &mut Sampler,
+    sampler: &mut impl SampleSource,
     max_vertices: usize,
     path: &mut Vec<Vertex>,
     stats: &mut TraceStats,
@@ -45,7 +45,7 @@ pub fn camera_subpath(
 /// `max_vertices - 1` more vertices. Leaves `path` empty when the light gives no sample.
 pub fn light_subpath(
     ctx: &Context<'_>,
-    sampler: &mut Sampler,
+    sampler: &mut impl SampleSource,
     max_vertices: usize,
     path: &mut Vec<Vertex>,
     stats: &mut TraceStats,
@@ -100,7 +100,7 @@ pub fn light_subpath(
 fn random_walk(
     ctx: &Context<'_>,
     mut ray: Ray,
-    sampler: &mut Sampler,
+    sampler: &mut impl SampleSource,
     mut beta: Rgb,
     pdf_dir: f32,
     max_new: usize,
