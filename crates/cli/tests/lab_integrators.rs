@@ -46,7 +46,7 @@ fn equal_samples_rows_match_diff_on_the_written_images() {
             "compare",
             &cornell(),
             "--integrators",
-            "path,bdpt,lightpath,sppm",
+            "path,bdpt,lightpath,sppm,mlt",
             "--resolution",
             "24x24",
             "--spp",
@@ -63,7 +63,7 @@ fn equal_samples_rows_match_diff_on_the_written_images() {
     assert_eq!(report["budget"]["samples"], 4);
     let rows = report["integrators"].as_array().unwrap();
     let names: Vec<_> = rows.iter().map(|r| r["integrator"].as_str().unwrap()).collect();
-    assert_eq!(names, ["path", "bdpt", "lightpath", "sppm"]);
+    assert_eq!(names, ["path", "bdpt", "lightpath", "sppm", "mlt"]);
     let best = rows
         .iter()
         .map(|r| r["efficiency"].as_f64().unwrap())
@@ -85,7 +85,11 @@ fn equal_samples_rows_match_diff_on_the_written_images() {
             assert!(r.get(key).is_some(), "{name}: no field {key}");
         }
         assert_eq!(r["samples"], 4, "{name}");
-        let unit = if name == "sppm" { "iterations" } else { "spp" };
+        let unit = match name {
+            "sppm" => "iterations",
+            "mlt" => "mutations/pixel",
+            _ => "spp",
+        };
         assert_eq!(r["sample_unit"], unit, "{name}");
         let (e, t, m) = (
             r["rel_mse"].as_f64().unwrap(),
@@ -115,15 +119,11 @@ fn equal_samples_rows_match_diff_on_the_written_images() {
     }
 }
 
-/// An unknown name is an error naming it; `mlt` (not in this build yet) is an error, not
-/// skipped.
+/// An unknown name is an error naming it, not skipped.
 #[test]
-fn unknown_or_unavailable_integrators_are_errors_naming_them() {
+fn unknown_integrators_are_errors_naming_them() {
     let dir = tempfile::tempdir().unwrap();
-    for (list, expect) in [
-        ("path,photon", "\"photon\""),
-        ("path,mlt", "mlt: not available in this build"),
-    ] {
+    for (list, expect) in [("path,photon", "\"photon\""), ("photon,path", "\"photon\"")] {
         let o = mcrender(
             &[
                 "compare",

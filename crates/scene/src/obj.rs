@@ -21,15 +21,15 @@ pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
     };
     let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
     let meshes: Vec<&tobj::Mesh> = models.iter().map(|m| &m.mesh).collect();
-    mesh_of(path, &meshes)
+    mesh_of(&meshes)
 }
 
-/// The meshes `parts` of `path` merged into one, with normals and uvs kept only when every
+/// The meshes `parts` merged into one, with normals and uvs kept only when every
 /// vertex has valid ones.
 ///
 /// # Errors
 /// As [`read_obj_mesh`].
-pub fn mesh_of(path: &Path, parts: &[&tobj::Mesh]) -> Result<TriangleMeshDesc, String> {
+pub fn mesh_of(parts: &[&tobj::Mesh]) -> Result<TriangleMeshDesc, String> {
     let mut mesh = TriangleMeshDesc::default();
     let (mut normals, mut uvs) = (Vec::new(), Vec::new());
     let (mut all_normals, mut all_uvs) = (true, true);

@@ -98,7 +98,7 @@ fn build(
         if model.mesh.indices.is_empty() {
             continue;
         }
-        let mesh = crate::obj::mesh_of(path, &[&model.mesh]).map_err(|m| SceneError::invalid(&loc, m))?;
+        let mesh = crate::obj::mesh_of(&[&model.mesh]).map_err(|m| SceneError::invalid(&loc, m))?;
         let mtl = model.mesh.material_id.and_then(|i| materials.get(i));
         let (material, area_light) =
             converter.material(mtl, model.mesh.material_id, &mut desc.materials, &mut warnings)?;

@@ -328,7 +328,15 @@ fn print_table(report: &Report) {
         println!(
             "{:<20}{:>14}{:>12.5}{:>14}{:>14}{:>10.3}{:>14.4e}{:>10.3}",
             r.name,
-            format!("{} {}", r.samples, if r.sample_unit == "spp" { "spp" } else { "it" }),
+            format!(
+                "{} {}",
+                r.samples,
+                match r.sample_unit {
+                    "iterations" => "it",
+                    "mutations/pixel" => "mpp",
+                    unit => unit,
+                }
+            ),
             r.mean_luminance,
             r.variance.map_or_else(dash, |v| format!("{v:.4e}")),
             r.rel_mse.map_or_else(dash, |e| format!("{e:.4e}")),

@@ -5,14 +5,16 @@
 //! samples it used, and efficiency `1 / (relMSE x time)`.
 //!
 //! Integrator names are parsed by one function, [`parse_integrator`], from one table,
-//! [`INTEGRATORS`]: a name the build knows but cannot render (`mlt` until its driver
-//! lands) is an error naming it, never skipped.
+//! [`INTEGRATORS`]: a name the build knows but cannot render is an error naming it, never
+//! skipped. MLT is not progressive (its chains run to the end); at equal time it gets the
+//! mutations per pixel that two short calibration renders predict fit in the budget.
 
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
 use crate::color::Rgb;
 use crate::film::{Film, FilmStatistics};
+use crate::integrator::mlt::{self, MltSettings};
 use crate::integrator::sppm::{self, SppmSettings};
 use crate::render::{RenderOptions, RenderSession};
 use crate::scene::{IntegratorKind, Scene, SceneDescription};
@@ -27,8 +29,7 @@ pub const INTEGRATORS: &[(&str, Option<IntegratorKind>)] = &[
     ("bdpt", Some(IntegratorKind::Bdpt)),
     ("lightpath", Some(IntegratorKind::LightPath)),
     ("sppm", Some(IntegratorKind::Sppm)),
-    // Becomes `Some(IntegratorKind::Mlt)` when MLT and its driver exist.
-    ("mlt", None),
+    ("mlt", Some(IntegratorKind::Mlt)),
 ];
 
 /// The integrator called `name` (one of [`INTEGRATORS`]).
@@ -180,10 +181,10 @@ pub fn compare_integrators(
         rows.push(IntegratorRow {
             kind,
             samples: run.samples,
-            sample_unit: if kind == IntegratorKind::Sppm {
-                "iterations"
-            } else {
-                "spp"
+            sample_unit: match kind {
+                IntegratorKind::Sppm => "iterations",
+                IntegratorKind::Mlt => "mutations/pixel",
+                _ => "spp",
             },
             efficiency: 1.0 / (stats.rel_mse.unwrap_or(f64::NAN) * seconds),
             stats,
@@ -236,8 +237,10 @@ fn render_within(
     measure: &(dyn Fn(&Film) -> f64 + Sync),
 ) -> Result<Run, LabError> {
     let scene = Scene::build(desc)?;
-    if desc.integrator.kind == IntegratorKind::Sppm {
-        return render_sppm(&scene, threads, budget, measure);
+    match desc.integrator.kind {
+        IntegratorKind::Sppm => return render_sppm(&scene, threads, budget, measure),
+        IntegratorKind::Mlt => return render_mlt(&scene, threads, budget, measure),
+        _ => {}
     }
     let opts = RenderOptions {
         threads,
@@ -317,6 +320,53 @@ fn render_sppm(
         samples: out.iterations,
         time,
         rays: out.trace.rays + out.trace.shadow_rays,
+        points,
+    })
+}
+
+/// MLT at `mutations_per_pixel` on its own pool: the film, the time and the rays.
+fn mlt_once(
+    scene: &Scene,
+    threads: Option<usize>,
+    mutations_per_pixel: u32,
+) -> Result<(Film, Duration, u64), LabError> {
+    let mut settings = MltSettings::from_scene(scene);
+    settings.mutations_per_pixel = mutations_per_pixel.max(1);
+    let cancel = AtomicBool::new(false);
+    let start = Instant::now();
+    let (out, _) = mlt::render_with_threads(scene, &settings, threads, &|_, _| {}, &cancel)
+        .map_err(|e| LabError::Argument(format!("cannot start the render threads: {e}")))?;
+    Ok((out.film, start.elapsed(), out.trace.rays + out.trace.shadow_rays))
+}
+
+/// MLT: `Samples(n)` renders n mutations per pixel; `Time(t)` first renders 1 and 2
+/// mutations per pixel (not counted) to split the time into the bootstrap's and each
+/// mutation per pixel's, then renders what fits in `t`. One convergence point: MLT's
+/// estimate is only complete when its chains are.
+fn render_mlt(
+    scene: &Scene,
+    threads: Option<usize>,
+    budget: Budget,
+    measure: &(dyn Fn(&Film) -> f64 + Sync),
+) -> Result<Run, LabError> {
+    let mutations = match budget {
+        Budget::Samples(n) => n.max(1),
+        Budget::Time(t) => {
+            let (_, one, _) = mlt_once(scene, threads, 1)?;
+            let (_, two, _) = mlt_once(scene, threads, 2)?;
+            let per = two.saturating_sub(one).as_secs_f64().max(1e-6);
+            let bootstrap = one.as_secs_f64() - per;
+            let fit = ((t.as_secs_f64() - bootstrap) / per).floor();
+            fit.clamp(1.0, f64::from(u32::MAX)) as u32
+        }
+    };
+    let (film, time, rays) = mlt_once(scene, threads, mutations)?;
+    let points = vec![(time.as_secs_f64(), measure(&film))];
+    Ok(Run {
+        film,
+        samples: mutations,
+        time,
+        rays,
         points,
     })
 }
