@@ -43,7 +43,7 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         e => SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")),
     })?;
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
-    build(path, &file, dir, &models, materials)
+    build(&file, dir, &models, materials)
 }
 
 /// [`load_obj_scene`] on OBJ text in memory, named `file`, whose `mtllib` reads `mtl`
@@ -59,7 +59,7 @@ pub fn load_obj_scene_bytes(obj: &[u8], mtl: Option<&[u8]>, file: &str, dir: &Pa
         None => Err(tobj::LoadError::OpenFileFailed),
     })
     .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
-    build(Path::new(file), &name, dir, &models, materials)
+    build(&name, dir, &models, materials)
 }
 
 /// How OBJ files are read: one index per vertex, polygons fan-triangulated.
@@ -71,7 +71,6 @@ const OPTIONS: tobj::LoadOptions = tobj::LoadOptions {
 };
 
 fn build(
-    path: &Path,
     file: &Arc<str>,
     dir: &Path,
     models: &[tobj::Model],
