@@ -26,6 +26,9 @@ pub enum IntegratorChoice {
     Lightpath,
     /// Stochastic progressive photon mapping (the scene's or pbrt's SPPM parameters).
     Sppm,
+    /// Metropolis light transport over bidirectional paths (the scene's or pbrt's MLT
+    /// parameters).
+    Mlt,
 }
 
 /// Russian roulette presets.
@@ -203,6 +206,7 @@ impl SceneArgs {
                 IntegratorChoice::Bdpt => IntegratorKind::Bdpt,
                 IntegratorChoice::Lightpath => IntegratorKind::LightPath,
                 IntegratorChoice::Sppm => IntegratorKind::Sppm,
+                IntegratorChoice::Mlt => IntegratorKind::Mlt,
             };
         }
         if let Some(d) = self.direct {

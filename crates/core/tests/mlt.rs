@@ -373,3 +373,41 @@ fn erf(x: f64) -> f64 {
         r - 1.0
     }
 }
+
+/// A dimension left untouched for `k` accepted small-step iterations receives the `k`
+/// steps at once: its change (taken on the circle) has mean 0 and standard deviation
+/// `sigma sqrt(k)`; both moments within 4 standard errors.
+#[test]
+fn a_dimension_skipped_for_k_iterations_moves_sigma_sqrt_k() {
+    let (sigma, k, n) = (0.01f64, 9u32, 20_000u64);
+    let mut d = Vec::with_capacity(n as usize);
+    for i in 0..n {
+        let mut s = MltSampler::new(i, 23, sigma as f32, 0.0, 2);
+        s.start_stream(0);
+        let x = f64::from(s.get_1d());
+        for _ in 0..k - 1 {
+            s.start_iteration();
+            s.start_stream(1);
+            s.get_1d();
+            s.accept();
+        }
+        s.start_iteration();
+        s.start_stream(0);
+        let y = f64::from(s.get_1d());
+        let mut delta = y - x;
+        delta -= delta.round();
+        d.push(delta);
+    }
+    let nf = n as f64;
+    let mean = d.iter().sum::<f64>() / nf;
+    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (nf - 1.0);
+    let expected_var = sigma * sigma * f64::from(k);
+    // For a normal variable the sample variance has standard error var sqrt(2 / (n - 1)).
+    let se_var = expected_var * (2.0 / (nf - 1.0)).sqrt();
+    eprintln!("mean {mean:.2e}, variance {var:.4e} vs {expected_var:.4e} (se {se_var:.1e})");
+    assert!(mean.abs() <= 4.0 * (expected_var / nf).sqrt(), "mean {mean}");
+    assert!(
+        (var - expected_var).abs() <= 4.0 * se_var,
+        "variance {var} vs {expected_var}"
+    );
+}

@@ -1,9 +1,9 @@
-//! `Integrator "lightpath"` and `Integrator "sppm"`: kinds, SPPM parameters with pbrt-v4's
+//! `Integrator "lightpath"`, `"sppm"` and `"mlt"`: kinds, SPPM and MLT parameters with pbrt-v4's
 //! defaults, and bad parameters reported with their position.
 
 use std::path::Path;
 
-use mcrender_core::scene::{IntegratorKind, SppmDesc};
+use mcrender_core::scene::{IntegratorKind, MltDesc, SppmDesc};
 use mcrender_scene::pbrt::{load_str, LoadedScene};
 
 /// Loads `src` followed by a world with a light (so that only integrator warnings remain).
@@ -62,6 +62,48 @@ fn bad_sppm_parameters_are_errors_with_their_position() {
         ("\"float radius\" -1", "radius"),
     ] {
         let e = load_err(&format!("Integrator \"sppm\" {params}\nWorldBegin\n"));
+        assert!(e.starts_with("scene.pbrt:1:"), "{e}");
+        assert!(e.contains(what), "{e}");
+    }
+}
+
+#[test]
+fn mlt_is_its_own_integrator_without_a_warning() {
+    let s = load("Integrator \"mlt\"\nWorldBegin\n");
+    assert_eq!(s.description.integrator.kind, IntegratorKind::Mlt);
+    assert_eq!(s.description.integrator.mlt, MltDesc::default());
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let s = load(
+        "Integrator \"mlt\" \"integer maxdepth\" 3 \"integer bootstrapsamples\" 500 \"integer chains\" 8 \
+         \"integer mutationsperpixel\" 16 \"float largestepprobability\" 0.5 \"float sigma\" 0.05 \
+         \"bool regularize\" true\nWorldBegin\n",
+    );
+    let i = &s.description.integrator;
+    assert_eq!(
+        i.mlt,
+        MltDesc {
+            bootstrap_samples: 500,
+            chains: 8,
+            mutations_per_pixel: 16,
+            large_step_probability: 0.5,
+            sigma: 0.05,
+            regularize: true,
+        }
+    );
+    assert_eq!(i.max_depth, 3);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+}
+
+#[test]
+fn bad_mlt_parameters_are_errors_with_their_position() {
+    for (params, what) in [
+        ("\"integer bootstrapsamples\" 0", "bootstrapsamples"),
+        ("\"integer chains\" -2", "chains"),
+        ("\"integer mutationsperpixel\" 0", "mutationsperpixel"),
+        ("\"float largestepprobability\" 1.5", "largestepprobability"),
+        ("\"float sigma\" 0", "sigma"),
+    ] {
+        let e = load_err(&format!("Integrator \"mlt\" {params}\nWorldBegin\n"));
         assert!(e.starts_with("scene.pbrt:1:"), "{e}");
         assert!(e.contains(what), "{e}");
     }

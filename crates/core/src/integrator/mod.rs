@@ -7,7 +7,8 @@
 //!
 //! Light tracing ([`LightPathIntegrator`]) traces paths from the lights and splats their
 //! camera connections. Stochastic progressive photon mapping ([`sppm`]) does not work per
-//! camera sample and has its own driver, [`sppm::render`].
+//! camera sample and has its own driver, [`sppm::render`]; so has Metropolis light transport
+//! ([`mlt::render`]), which runs Markov chains over the bidirectional paths of [`bdpt`].
 
 pub mod bdpt;
 mod direct;

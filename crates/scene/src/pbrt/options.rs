@@ -232,9 +232,9 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// `Integrator "path"`, `"direct"` and `"bdpt"` (with `regularize`,
-    /// `visualizestrategies`, `visualizeweights`); other pbrt integrators fall back to path
-    /// with a warning.
+    /// `Integrator "path"`, `"direct"`, `"bdpt"` (with `regularize`,
+    /// `visualizestrategies`, `visualizeweights`), `"lightpath"`, `"sppm"` and `"mlt"` (with
+    /// their parameters); other pbrt integrators fall back to path with a warning.
     pub fn integrator(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Integrator", loc)?;
         let integrator_kind = match kind {
