@@ -237,3 +237,25 @@ def test_light_tracing_equals_the_cli_and_sppm_is_refused(cli, scene_path, tmp_p
     assert scene.render(spp=2, progress=False).tobytes() == mcrender.read_image(out).tobytes()
     with pytest.raises(ValueError):
         scene.integrator = "sppm"  # its own driver, not run from Python yet
+
+
+def test_compare_integrators_has_the_figures_of_the_cli_json(cli, repo, tmp_path):
+    path = repo / "scenes" / "cornell-box" / "scene-v4.pbrt"
+    scene = mcrender.load(path)
+    scene.resolution = (16, 16)
+    mcrender.write_image(str(tmp_path / "ref.exr"), scene.render(spp=32, seed=7, progress=False))
+    integrators = ["path", "bdpt", "sppm"]
+    done = run_cli(cli, "compare", path, "--spp", 2, "--resolution", "16x16", "--integrators",
+                   ",".join(integrators), "--reference", tmp_path / "ref.exr", "--json", "-o", tmp_path / "cmp")
+    cli_rows = json.loads(done.stdout)["integrators"]
+    rows = mcrender.compare(scene, integrators=integrators, spp=2, reference=str(tmp_path / "ref.exr"))
+    assert [r["integrator"] for r in rows] == integrators
+    for mine, theirs in zip(rows, cli_rows):
+        assert set(theirs) <= set(mine)
+        for key in ("integrator", "samples", "sample_unit", "rays", "variance", "rel_mse"):
+            assert mine[key] == theirs[key], key
+        assert mine["reference"] == "given"
+    with pytest.raises(ValueError, match="mlt: not available in this build"):
+        mcrender.compare(scene, integrators=["path", "mlt"], spp=1)
+    with pytest.raises(ValueError, match="\"photon\""):
+        mcrender.compare(scene, integrators=["photon"], spp=1)
