@@ -1,13 +1,18 @@
 //! The estimator lab from Python: `mcrender.compare(scene, techniques, spp, reference)`
 //! (the figures of `mcrender compare --json`, computed by the same
-//! `mcrender_core::lab::compare_techniques`) and `mcrender.pi(samples, seed, trials)` (those
+//! `mcrender_core::lab::compare_techniques`, or with `integrators=[...]` by
+//! `compare_integrators`) and `mcrender.pi(samples, seed, trials)` (those
 //! of `mcrender pi --json`).
 
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
 use mcrender_core::color::Rgb;
-use mcrender_core::lab::{compare_techniques, estimate_pi, pi_trials, EXACT_VARIANCE_TIMES_N};
+use mcrender_core::lab::{
+    compare_integrators, compare_techniques, estimate_pi, integrator_name, parse_integrator, pi_trials, Budget,
+    ReferenceSource, EXACT_VARIANCE_TIMES_N,
+};
+use mcrender_core::scene::IntegratorKind;
 use numpy::PyReadonlyArray3;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -34,8 +39,15 @@ const ALL_TECHNIQUES: [&str; 5] = ["uniform-hemisphere", "cosine-hemisphere", "l
 /// `mcrender compare --json` (technique, spp, mean_radiance, mean_luminance, variance,
 /// rel_mse, time_s, rays, efficiency, relative_efficiency), plus `image` (the render, an
 /// (H, W, 3) array) and `convergence` (a list of (spp, error) after waves 1, 2, 4, ...).
+///
+/// With `integrators=[...]` (names as `mcrender compare --integrators`), compares
+/// integrators instead, at `spp` each or, with `time_budget` (seconds), at equal time: the
+/// dicts have the keys of `--integrators --json`'s rows (integrator, samples, sample_unit,
+/// ..., `variance` None for sppm and lightpath, `reference`: "given" or the long render
+/// used) and `convergence` as (seconds, rel. MSE).
 #[pyfunction]
-#[pyo3(signature = (scene, techniques=None, spp=None, reference=None, threads=None))]
+#[pyo3(signature = (scene, techniques=None, spp=None, reference=None, threads=None, integrators=None, time_budget=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn compare<'py>(
     py: Python<'py>,
     scene: &PyScene,
@@ -43,7 +55,17 @@ pub fn compare<'py>(
     spp: Option<u32>,
     reference: Option<Reference<'py>>,
     threads: Option<usize>,
+    integrators: Option<Vec<String>>,
+    time_budget: Option<f64>,
 ) -> PyResult<Bound<'py, PyList>> {
+    if integrators.is_some() && techniques.is_some() {
+        return Err(PyValueError::new_err(
+            "techniques and integrators: give one or the other",
+        ));
+    }
+    if time_budget.is_some() && integrators.is_none() {
+        return Err(PyValueError::new_err("time_budget: only with integrators"));
+    }
     let names = techniques.unwrap_or_else(|| ALL_TECHNIQUES.iter().map(|s| s.to_string()).collect());
     let techniques = names.iter().map(|n| parse_technique(n)).collect::<PyResult<Vec<_>>>()?;
     let mut desc = scene.desc.clone();
@@ -83,6 +105,50 @@ pub fn compare<'py>(
             Some(pixels)
         }
     };
+    if let Some(names) = integrators {
+        let kinds = names
+            .iter()
+            .map(|n| parse_integrator(n).map_err(PyValueError::new_err))
+            .collect::<PyResult<Vec<IntegratorKind>>>()?;
+        let budget = match time_budget {
+            Some(s) if !(s.is_finite() && s > 0.0) => {
+                return Err(PyValueError::new_err(format!(
+                    "time_budget: expected a positive number of seconds, found {s}"
+                )))
+            }
+            Some(s) => Budget::Time(std::time::Duration::from_secs_f64(s)),
+            None => Budget::Samples(desc.sampler.samples_per_pixel),
+        };
+        let report = py
+            .detach(|| compare_integrators(&desc, &kinds, reference.as_deref(), threads, budget, |_, _| {}))
+            .map_err(|e| lab_error(&e))?;
+        py.check_signals()?;
+        let source = match report.reference {
+            ReferenceSource::Given => "given".to_string(),
+            ReferenceSource::LongRender(k) => format!("long render of {}", integrator_name(k)),
+        };
+        let out = PyList::empty(py);
+        for r in &report.rows {
+            let d = PyDict::new(py);
+            d.set_item("integrator", integrator_name(r.kind))?;
+            d.set_item("samples", r.samples)?;
+            d.set_item("sample_unit", r.sample_unit)?;
+            d.set_item("mean_radiance", r.stats.mean.to_array())?;
+            d.set_item("mean_luminance", r.stats.mean.luminance())?;
+            let no_variance = matches!(r.kind, IntegratorKind::Sppm | IntegratorKind::LightPath);
+            d.set_item("variance", (!no_variance).then_some(r.stats.mean_variance))?;
+            d.set_item("rel_mse", r.stats.rel_mse)?;
+            d.set_item("time_s", r.seconds)?;
+            d.set_item("rays", r.rays)?;
+            d.set_item("efficiency", r.efficiency)?;
+            d.set_item("relative_efficiency", r.relative_efficiency)?;
+            d.set_item("reference", &source)?;
+            d.set_item("image", rgb_array(py, w, h, &r.film.mean_image())?)?;
+            d.set_item("convergence", r.points.clone())?;
+            out.append(d)?;
+        }
+        return Ok(out);
+    }
     let rows = py
         .detach(|| compare_techniques(&desc, &techniques, reference.as_deref(), threads, |_| {}))
         .map_err(|e| lab_error(&e))?;

@@ -279,3 +279,23 @@ def test_windows_combine_into_the_whole_render_bit_for_bit(scene_path, integrato
         films[0].combined(films[0])
     with pytest.raises(ValueError, match="window"):
         scene.render_film(0, 4, window=(0, 0, 41, 5))
+
+
+def test_compare_integrators_has_the_figures_of_the_cli_json(cli, repo, tmp_path):
+    path = repo / "scenes" / "cornell-box" / "scene-v4.pbrt"
+    scene = mcrender.load(path)
+    scene.resolution = (16, 16)
+    mcrender.write_image(str(tmp_path / "ref.exr"), scene.render(spp=32, seed=7, progress=False))
+    integrators = ["path", "bdpt", "sppm"]
+    done = run_cli(cli, "compare", path, "--spp", 2, "--resolution", "16x16", "--integrators",
+                   ",".join(integrators), "--reference", tmp_path / "ref.exr", "--json", "-o", tmp_path / "cmp")
+    cli_rows = json.loads(done.stdout)["integrators"]
+    rows = mcrender.compare(scene, integrators=integrators, spp=2, reference=str(tmp_path / "ref.exr"))
+    assert [r["integrator"] for r in rows] == integrators
+    for mine, theirs in zip(rows, cli_rows):
+        assert set(theirs) <= set(mine)
+        for key in ("integrator", "samples", "sample_unit", "rays", "variance", "rel_mse"):
+            assert mine[key] == theirs[key], key
+        assert mine["reference"] == "given"
+    with pytest.raises(ValueError, match="\"photon\""):
+        mcrender.compare(scene, integrators=["photon"], spp=1)

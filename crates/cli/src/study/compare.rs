@@ -285,6 +285,8 @@ fn write_report(args: &CompareArgs, stem: &str, report: &Report) -> Result<()> {
                     "relative_efficiency": r.relative_efficiency,
                 });
                 if report.kind == "integrator" {
+                    // Not all integrators count samples per pixel (SPPM: iterations).
+                    o.as_object_mut().map(|m| m.remove("spp"));
                     o["samples"] = r.samples.into();
                     o["sample_unit"] = r.sample_unit.into();
                 }

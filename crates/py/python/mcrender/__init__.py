@@ -59,6 +59,8 @@ def compare(
     spp: Optional[int] = None,
     reference: Union[None, PathLike, np.ndarray] = None,
     threads: Optional[int] = None,
+    integrators: Optional[Sequence[str]] = None,
+    time_budget: Optional[float] = None,
 ) -> List[Dict[str, Any]]:
     """Compare direct-lighting techniques on ``scene`` (default: uniform-hemisphere,
     cosine-hemisphere, light-area, bsdf, mis), each at ``spp`` samples per pixel (default:
@@ -67,7 +69,13 @@ def compare(
     reference), time_s, rays, efficiency (1 / (variance x time)), relative_efficiency; and
     ``image`` (the render) and ``convergence`` ([(spp, error), ...] after waves of 1, 2, 4,
     ... spp; the error is the relative MSE against the reference, else the mean variance).
-    ``reference`` is an EXR path or an (H, W, 3) array."""
+    ``reference`` is an EXR path or an (H, W, 3) array.
+
+    With ``integrators`` (e.g. ``["path", "bdpt", "sppm"]``), compares integrators as
+    ``mcrender compare --integrators`` does, at ``spp`` each or at equal time with
+    ``time_budget`` seconds each; the dicts have the keys of its JSON rows plus
+    ``reference`` ("given" or the long render used), ``image`` and ``convergence``
+    ([(seconds, rel. MSE), ...])."""
     if reference is not None and not isinstance(reference, (str, os.PathLike)):
         reference = _image_array(reference, "reference")
     elif reference is not None:
@@ -78,4 +86,6 @@ def compare(
         spp,
         reference,
         threads,
+        list(integrators) if integrators is not None else None,
+        time_budget,
     )

@@ -92,6 +92,8 @@ def compare(
     spp: Optional[int] = None,
     reference: Union[None, str, _Image] = None,
     threads: Optional[int] = None,
+    integrators: Optional[List[str]] = None,
+    time_budget: Optional[float] = None,
 ) -> List[Dict[str, Any]]: ...
 def pi(
     samples: Optional[List[int]] = None,
