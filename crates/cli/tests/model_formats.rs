@@ -84,11 +84,13 @@ fn an_obj_renders_with_the_default_camera_and_light_said_on_stderr() {
             "render",
             "model.obj",
             "--spp",
-            "2",
+            "64",
             "--resolution",
             "8x8",
             "-o",
             "out.exr",
+            "--variance-output",
+            "var.exr",
             "-q",
         ],
         dir.path(),
@@ -103,10 +105,21 @@ fn an_obj_renders_with_the_default_camera_and_light_said_on_stderr() {
         err.contains("model.obj: no light; adding a uniform white environment light"),
         "{err}"
     );
-    // The grey square fills the middle of the image under a white sky: 0.5 reflected.
+    // The grey square fills the middle of the image under a white sky and sees nothing
+    // else: 0.5 reflected, within 4 standard errors (from the variance of the mean).
     let img = mcrender_scene::read_image(&dir.path().join("out.exr")).unwrap();
-    let p = img.get(4, 4);
-    assert!((p.g - 0.5).abs() < 1e-3, "{p:?}");
+    let var = mcrender_scene::read_image(&dir.path().join("var.exr")).unwrap();
+    let (mut sum, mut v) = (0.0f64, 0.0f64);
+    for (x, y) in [(3, 3), (3, 4), (4, 3), (4, 4)] {
+        sum += f64::from(img.get(x, y).g) / 4.0;
+        v += f64::from(var.get(x, y).g) / 16.0;
+    }
+    assert!(v > 0.0);
+    assert!(
+        (sum - 0.5).abs() < 4.0 * v.sqrt(),
+        "mean {sum}, standard error {}",
+        v.sqrt()
+    );
 }
 
 #[test]
