@@ -9,18 +9,17 @@ use common::{mcrender, stderr};
 /// A 4x4 emissive square at z = 0 (radiance 1), seen from z = 1 by a camera whose
 /// 60-degree view it fills: every pixel sees exactly the emitted radiance.
 fn emissive_square_gltf() -> String {
-    format!(
-        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0, 1]}}],
-  "nodes": [{{"mesh": 0}}, {{"camera": 0, "translation": [0, 0, 1]}}],
-  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 1.0472, "aspectRatio": 1.0, "znear": 0.01}}}}],
-  "materials": [{{"emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1]}}}}],
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1, "material": 0}}]}}],
-  "buffers": [{{"byteLength": 60, "uri": "square.bin"}}],
-  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 12}}],
+    r#"{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0472, "aspectRatio": 1.0, "znear": 0.01}}],
+  "materials": [{"emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "buffers": [{"byteLength": 60, "uri": "square.bin"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
   "accessors": [
-    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, -2, 0], "max": [2, 2, 0]}},
-    {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}}]}}"#
-    )
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, -2, 0], "max": [2, 2, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]}"#
+        .to_string()
 }
 
 fn square_bin() -> Vec<u8> {

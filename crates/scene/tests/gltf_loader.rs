@@ -89,6 +89,9 @@ fn mesh(s: &LoadedScene, i: usize) -> &TriangleMeshDesc {
     }
 }
 
+/// cos 45 degrees, for quarter-turn quaternions.
+const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
 fn close(a: Vec3, b: Vec3) -> bool {
     (a - b).length() < 1e-5
 }
@@ -136,7 +139,7 @@ fn node_transforms_compose_down_the_hierarchy() {
         {"children": [1], "translation": [1, 0, 0], "scale": [2, 2, 2]},
         {"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,1,0,1],
          "children": [2]},
-        {"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678]}
+        {"mesh": 0, "rotation": [0, 0, H, H]}
     ]);
     let s = load_doc(&doc);
     assert_eq!(s.description.shapes.len(), 2);
@@ -215,7 +218,7 @@ fn punctual_lights_are_converted_from_photometric_units() {
         {"translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
         {"translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 1}}},
         // A quarter turn about x: -z (the light's direction) becomes -y... pointing down.
-        {"rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 2}}}
+        {"rotation": [-H, 0, 0, H], "extensions": {"KHR_lights_punctual": {"light": 2}}}
     ]);
     let s = load_doc(&doc);
     let lights = &s.description.lights;
@@ -373,7 +376,7 @@ fn embedded_data_uri_buffers_and_glb_load_the_same_triangle() {
 
     // GLB: header, JSON chunk (padded with spaces), BIN chunk.
     let mut json = serde_json::to_vec(&triangle_doc(None)).unwrap();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let bin = triangle_bin();
@@ -401,7 +404,7 @@ fn malformed_files_name_the_file_and_the_json_path() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.gltf");
     std::fs::write(&path, "{\n  \"asset\": {\"version\": \"2.0\"},\n  oops\n}").unwrap();
-    let e = load(&path).err().expect("bad JSON").to_string();
+    let e = load(&path).expect_err("bad JSON").to_string();
     assert!(e.starts_with(&format!("{}:3:", path.display())), "{e}");
 
     // A buffer file that does not exist.
