@@ -273,7 +273,7 @@ fn textures_factors_emission_and_transmission_become_materials() {
         {"pbrMetallicRoughness": {
             "baseColorFactor": [0.5, 1.0, 1.0, 1.0],
             "baseColorTexture": {"index": 0,
-                "extensions": {"KHR_texture_transform": {"offset": [0.25, 0.0], "scale": [2.0, 1.0]}}},
+                "extensions": {"KHR_texture_transform": {"offset": [0.25, 0.0], "scale": [2.0, 1.0], "rotation": 0.5}}},
             "metallicFactor": 0.5, "roughnessFactor": 1.0,
             "metallicRoughnessTexture": {"index": 1}},
          "normalTexture": {"index": 1}},
@@ -344,6 +344,7 @@ fn textures_factors_emission_and_transmission_become_materials() {
     let w = s.warnings.join("\n");
     assert!(w.contains("EXT_made_up is not supported"), "{w}");
     assert!(w.contains("materials[0].normalTexture is ignored"), "{w}");
+    assert!(w.contains("KHR_texture_transform.rotation 0.5 is ignored"), "{w}");
     // The emissive triangle lights the scene: no environment light added.
     assert!(d.lights.is_empty(), "{:?}", d.lights);
     d.validate().unwrap();
