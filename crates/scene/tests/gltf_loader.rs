@@ -443,6 +443,14 @@ fn malformed_files_name_the_file_and_the_json_path() {
     doc["meshes"][0]["primitives"][0]["indices"] = json!(17);
     let e = load_err(&doc);
     assert!(e.contains("meshes[0].primitives[0].indices"), "{e}");
+    // A POSITION accessor that does not exist (gltf-json's validation would panic on it).
+    let mut doc = triangle_doc(Some("tri.bin"));
+    doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(9);
+    let e = load_err(&doc);
+    assert!(
+        e.contains("meshes[0].primitives[0].attributes.POSITION: accessor 9 does not exist"),
+        "{e}"
+    );
     // A cycle in the node hierarchy.
     let mut doc = triangle_doc(Some("tri.bin"));
     doc["nodes"] = json!([{"mesh": 0, "children": [1]}, {"children": [0]}]);

@@ -67,6 +67,29 @@ pub fn load_gltf(path: &Path) -> Result<LoadedScene, SceneError> {
 pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = file.into();
     let loc = Location::file_only(file.clone());
+    // gltf-json 1.4.1's validation indexes the accessors by each primitive's POSITION
+    // before checking the index (and panics on a bad one): check those first.
+    let raw = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| parse_error(&file, e))?;
+    let accessors = raw.as_json().accessors.len();
+    for (m, mesh) in raw.as_json().meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &prim.attributes {
+                if index.value() >= accessors {
+                    let name = match semantic {
+                        gltf::json::validation::Checked::Valid(s) => s.to_string(),
+                        gltf::json::validation::Checked::Invalid => "?".to_string(),
+                    };
+                    return Err(SceneError::invalid(
+                        &loc,
+                        format!(
+                            "meshes[{m}].primitives[{p}].attributes.{name}: accessor {} does not exist ({accessors} accessors)",
+                            index.value()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|e| parse_error(&file, e))?;
     let invalid = |m: String| SceneError::invalid(&loc, m);
     let mut warnings = Vec::new();
