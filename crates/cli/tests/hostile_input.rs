@@ -59,7 +59,7 @@ fn resolution_16384x16384_is_refused_before_allocating() {
         FAST,
     );
     assert!(
-        err.contains("memory limit of 8.0 GiB") && err.contains("40.0 GiB"),
+        err.contains("memory limit of 8.0 GiB") && err.contains("46.0 GiB"),
         "{err}"
     );
     no_images(dir.path());

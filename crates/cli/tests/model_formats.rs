@@ -9,18 +9,17 @@ use common::{mcrender, stderr};
 /// A 4x4 emissive square at z = 0 (radiance 1), seen from z = 1 by a camera whose
 /// 60-degree view it fills: every pixel sees exactly the emitted radiance.
 fn emissive_square_gltf() -> String {
-    format!(
-        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0, 1]}}],
-  "nodes": [{{"mesh": 0}}, {{"camera": 0, "translation": [0, 0, 1]}}],
-  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 1.0472, "aspectRatio": 1.0, "znear": 0.01}}}}],
-  "materials": [{{"emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1]}}}}],
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1, "material": 0}}]}}],
-  "buffers": [{{"byteLength": 60, "uri": "square.bin"}}],
-  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 12}}],
+    r#"{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0472, "aspectRatio": 1.0, "znear": 0.01}}],
+  "materials": [{"emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "buffers": [{"byteLength": 60, "uri": "square.bin"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
   "accessors": [
-    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, -2, 0], "max": [2, 2, 0]}},
-    {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}}]}}"#
-    )
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, -2, 0], "max": [2, 2, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]}"#
+        .to_string()
 }
 
 fn square_bin() -> Vec<u8> {
@@ -84,11 +83,13 @@ fn an_obj_renders_with_the_default_camera_and_light_said_on_stderr() {
             "render",
             "model.obj",
             "--spp",
-            "2",
+            "64",
             "--resolution",
             "8x8",
             "-o",
             "out.exr",
+            "--variance-output",
+            "var.exr",
             "-q",
         ],
         dir.path(),
@@ -103,10 +104,21 @@ fn an_obj_renders_with_the_default_camera_and_light_said_on_stderr() {
         err.contains("model.obj: no light; adding a uniform white environment light"),
         "{err}"
     );
-    // The grey square fills the middle of the image under a white sky: 0.5 reflected.
+    // The grey square fills the middle of the image under a white sky and sees nothing
+    // else: 0.5 reflected, within 4 standard errors (from the variance of the mean).
     let img = mcrender_scene::read_image(&dir.path().join("out.exr")).unwrap();
-    let p = img.get(4, 4);
-    assert!((p.g - 0.5).abs() < 1e-3, "{p:?}");
+    let var = mcrender_scene::read_image(&dir.path().join("var.exr")).unwrap();
+    let (mut sum, mut v) = (0.0f64, 0.0f64);
+    for (x, y) in [(3, 3), (3, 4), (4, 3), (4, 4)] {
+        sum += f64::from(img.get(x, y).g) / 4.0;
+        v += f64::from(var.get(x, y).g) / 16.0;
+    }
+    assert!(v > 0.0);
+    assert!(
+        (sum - 0.5).abs() < 4.0 * v.sqrt(),
+        "mean {sum}, standard error {}",
+        v.sqrt()
+    );
 }
 
 #[test]

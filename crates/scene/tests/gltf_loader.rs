@@ -89,6 +89,9 @@ fn mesh(s: &LoadedScene, i: usize) -> &TriangleMeshDesc {
     }
 }
 
+/// cos 45 degrees, for quarter-turn quaternions.
+const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
 fn close(a: Vec3, b: Vec3) -> bool {
     (a - b).length() < 1e-5
 }
@@ -136,7 +139,7 @@ fn node_transforms_compose_down_the_hierarchy() {
         {"children": [1], "translation": [1, 0, 0], "scale": [2, 2, 2]},
         {"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,1,0,1],
          "children": [2]},
-        {"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678]}
+        {"mesh": 0, "rotation": [0, 0, H, H]}
     ]);
     let s = load_doc(&doc);
     assert_eq!(s.description.shapes.len(), 2);
@@ -215,7 +218,7 @@ fn punctual_lights_are_converted_from_photometric_units() {
         {"translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
         {"translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 1}}},
         // A quarter turn about x: -z (the light's direction) becomes -y... pointing down.
-        {"rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 2}}}
+        {"rotation": [-H, 0, 0, H], "extensions": {"KHR_lights_punctual": {"light": 2}}}
     ]);
     let s = load_doc(&doc);
     let lights = &s.description.lights;
@@ -270,7 +273,7 @@ fn textures_factors_emission_and_transmission_become_materials() {
         {"pbrMetallicRoughness": {
             "baseColorFactor": [0.5, 1.0, 1.0, 1.0],
             "baseColorTexture": {"index": 0,
-                "extensions": {"KHR_texture_transform": {"offset": [0.25, 0.0], "scale": [2.0, 1.0]}}},
+                "extensions": {"KHR_texture_transform": {"offset": [0.25, 0.0], "scale": [2.0, 1.0], "rotation": 0.5}}},
             "metallicFactor": 0.5, "roughnessFactor": 1.0,
             "metallicRoughnessTexture": {"index": 1}},
          "normalTexture": {"index": 1}},
@@ -341,6 +344,7 @@ fn textures_factors_emission_and_transmission_become_materials() {
     let w = s.warnings.join("\n");
     assert!(w.contains("EXT_made_up is not supported"), "{w}");
     assert!(w.contains("materials[0].normalTexture is ignored"), "{w}");
+    assert!(w.contains("KHR_texture_transform.rotation 0.5 is ignored"), "{w}");
     // The emissive triangle lights the scene: no environment light added.
     assert!(d.lights.is_empty(), "{:?}", d.lights);
     d.validate().unwrap();
@@ -373,7 +377,7 @@ fn embedded_data_uri_buffers_and_glb_load_the_same_triangle() {
 
     // GLB: header, JSON chunk (padded with spaces), BIN chunk.
     let mut json = serde_json::to_vec(&triangle_doc(None)).unwrap();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let bin = triangle_bin();
@@ -401,7 +405,7 @@ fn malformed_files_name_the_file_and_the_json_path() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.gltf");
     std::fs::write(&path, "{\n  \"asset\": {\"version\": \"2.0\"},\n  oops\n}").unwrap();
-    let e = load(&path).err().expect("bad JSON").to_string();
+    let e = load(&path).expect_err("bad JSON").to_string();
     assert!(e.starts_with(&format!("{}:3:", path.display())), "{e}");
 
     // A buffer file that does not exist.
@@ -439,6 +443,14 @@ fn malformed_files_name_the_file_and_the_json_path() {
     doc["meshes"][0]["primitives"][0]["indices"] = json!(17);
     let e = load_err(&doc);
     assert!(e.contains("meshes[0].primitives[0].indices"), "{e}");
+    // A POSITION accessor that does not exist (gltf-json's validation would panic on it).
+    let mut doc = triangle_doc(Some("tri.bin"));
+    doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(9);
+    let e = load_err(&doc);
+    assert!(
+        e.contains("meshes[0].primitives[0].attributes.POSITION: accessor 9 does not exist"),
+        "{e}"
+    );
     // A cycle in the node hierarchy.
     let mut doc = triangle_doc(Some("tri.bin"));
     doc["nodes"] = json!([{"mesh": 0, "children": [1]}, {"children": [0]}]);

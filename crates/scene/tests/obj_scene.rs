@@ -162,16 +162,16 @@ fn a_file_without_mtl_is_grey_and_bad_files_are_errors() {
         }]
     );
     let dir = tempfile::tempdir().unwrap();
-    let e = load(&dir.path().join("gone.obj")).err().expect("missing").to_string();
+    let e = load(&dir.path().join("gone.obj")).expect_err("missing").to_string();
     assert!(e.contains("gone.obj") && e.contains("cannot open"), "{e}");
     let path = write_scene(dir.path(), "v 0 0 0\nf 1 2 3\n", "");
-    let e = load(&path).err().expect("bad index").to_string();
+    let e = load(&path).expect_err("bad index").to_string();
     assert!(e.contains("model.obj"), "{e}");
     let path = write_scene(dir.path(), "v 0 0 0\nv 1 0 0\n", "");
-    let e = load(&path).err().expect("no faces").to_string();
+    let e = load(&path).expect_err("no faces").to_string();
     assert!(e.contains("no faces"), "{e}");
     // A texture that is not there.
     let path = write_scene(dir.path(), QUADS, &MTL.replace("tex.png", "nope.png"));
-    let e = load(&path).err().expect("missing texture").to_string();
+    let e = load(&path).expect_err("missing texture").to_string();
     assert!(e.contains("nope.png"), "{e}");
 }

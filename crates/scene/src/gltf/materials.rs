@@ -199,6 +199,14 @@ impl<'a> Materials<'a> {
         path: &str,
         warnings: &mut Vec<String>,
     ) -> Result<Arc<Image>, String> {
+        if let Some(t) = info.texture_transform() {
+            if t.rotation() != 0.0 {
+                warnings.push(format!(
+                    "{path}.extensions.KHR_texture_transform.rotation {} is ignored (offset and scale are read)",
+                    t.rotation()
+                ));
+            }
+        }
         if info.tex_coord() != 0 {
             warnings.push(format!(
                 "{path}.texCoord {} is read as TEXCOORD_0 (one uv set)",

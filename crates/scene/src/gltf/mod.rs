@@ -67,6 +67,40 @@ pub fn load_gltf(path: &Path) -> Result<LoadedScene, SceneError> {
 pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = file.into();
     let loc = Location::file_only(file.clone());
+    // gltf 1.4.1 subtracts 12 from a GLB's declared length unchecked (a panic where
+    // overflow is checked).
+    if let Some(h) = bytes.get(..12).filter(|h| h.starts_with(b"glTF")) {
+        let length = u32::from_le_bytes([h[8], h[9], h[10], h[11]]);
+        if length < 12 {
+            return Err(SceneError::syntax(
+                &loc,
+                format!("invalid GLB: header length {length} is below the header's 12 bytes"),
+            ));
+        }
+    }
+    // gltf-json 1.4.1's validation indexes the accessors by each primitive's POSITION
+    // before checking the index (and panics on a bad one): check those first.
+    let raw = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| parse_error(&file, e))?;
+    let accessors = raw.as_json().accessors.len();
+    for (m, mesh) in raw.as_json().meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &prim.attributes {
+                if index.value() >= accessors {
+                    let name = match semantic {
+                        gltf::json::validation::Checked::Valid(s) => s.to_string(),
+                        gltf::json::validation::Checked::Invalid => "?".to_string(),
+                    };
+                    return Err(SceneError::invalid(
+                        &loc,
+                        format!(
+                            "meshes[{m}].primitives[{p}].attributes.{name}: accessor {} does not exist ({accessors} accessors)",
+                            index.value()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|e| parse_error(&file, e))?;
     let invalid = |m: String| SceneError::invalid(&loc, m);
     let mut warnings = Vec::new();
