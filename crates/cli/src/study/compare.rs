@@ -212,10 +212,13 @@ fn integrator_report(
             sample_unit: r.sample_unit,
             mean: r.stats.mean.to_array(),
             mean_luminance: r.stats.mean.luminance(),
-            // SPPM keeps no per-pixel variance and light tracing only splats (whose
+            // SPPM keeps no per-pixel variance, and light tracing and MLT only splat (whose
             // variance the film does not track): no column for them.
-            variance: (!matches!(r.kind, IntegratorKind::Sppm | IntegratorKind::LightPath))
-                .then_some(r.stats.mean_variance),
+            variance: (!matches!(
+                r.kind,
+                IntegratorKind::Sppm | IntegratorKind::LightPath | IntegratorKind::Mlt
+            ))
+            .then_some(r.stats.mean_variance),
             rel_mse: r.stats.rel_mse,
             seconds: r.seconds,
             rays: r.rays,

@@ -324,6 +324,10 @@ fn render_sppm(
     })
 }
 
+/// Mutations per pixel of MLT's second calibration render (the first has 1): far enough
+/// apart that the time per mutation per pixel is not lost in the bootstrap's noise.
+const MLT_CALIBRATION: u32 = 5;
+
 /// MLT at `mutations_per_pixel` on its own pool: the film, the time and the rays.
 fn mlt_once(
     scene: &Scene,
@@ -339,9 +343,10 @@ fn mlt_once(
     Ok((out.film, start.elapsed(), out.trace.rays + out.trace.shadow_rays))
 }
 
-/// MLT: `Samples(n)` renders n mutations per pixel; `Time(t)` first renders 1 and 2
-/// mutations per pixel (not counted) to split the time into the bootstrap's and each
-/// mutation per pixel's, then renders what fits in `t`. One convergence point: MLT's
+/// MLT: `Samples(n)` renders n mutations per pixel; `Time(t)` first renders 1 and
+/// [`MLT_CALIBRATION`] mutations per pixel (not counted) to split the time into the
+/// bootstrap's and each mutation per pixel's, then renders what fits in `t` (at least 1:
+/// a bootstrap longer than the budget overruns it). One convergence point: MLT's
 /// estimate is only complete when its chains are.
 fn render_mlt(
     scene: &Scene,
@@ -353,8 +358,13 @@ fn render_mlt(
         Budget::Samples(n) => n.max(1),
         Budget::Time(t) => {
             let (_, one, _) = mlt_once(scene, threads, 1)?;
-            let (_, two, _) = mlt_once(scene, threads, 2)?;
-            let per = two.saturating_sub(one).as_secs_f64().max(1e-6);
+            let (_, more, _) = mlt_once(scene, threads, MLT_CALIBRATION)?;
+            // The slope of two noisy timings can be tiny or negative; never take a mutation
+            // per pixel to cost less than a quarter of the calibration's average (which
+            // includes the bootstrap), or the render would be asked for millions of them.
+            let slope = more.saturating_sub(one).as_secs_f64() / f64::from(MLT_CALIBRATION - 1);
+            let floor = more.as_secs_f64() / f64::from(4 * MLT_CALIBRATION);
+            let per = slope.max(floor).max(1e-6);
             let bootstrap = one.as_secs_f64() - per;
             let fit = ((t.as_secs_f64() - bootstrap) / per).floor();
             fit.clamp(1.0, f64::from(u32::MAX)) as u32
