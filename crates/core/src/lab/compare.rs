@@ -8,7 +8,7 @@ use crate::color::Rgb;
 use crate::film::FilmStatistics;
 use crate::scene::{DirectStrategy, SceneDescription};
 
-use super::waves::{render_in_waves, LabError, Progression};
+use super::waves::{check_reference, render_in_waves, LabError, Progression};
 
 /// One technique's figures.
 #[derive(Clone, Debug)]
@@ -51,17 +51,7 @@ pub fn compare_techniques(
     if techniques.is_empty() {
         return Err(LabError::Argument("techniques: expected at least one technique".into()));
     }
-    let pixels = u64::from(base.film.width) * u64::from(base.film.height);
-    if let Some(r) = reference {
-        if r.len() as u64 != pixels {
-            return Err(LabError::Argument(format!(
-                "reference: expected {}x{} = {pixels} pixels, found {}",
-                base.film.width,
-                base.film.height,
-                r.len()
-            )));
-        }
-    }
+    check_reference(base, reference)?;
     let spp = base.sampler.samples_per_pixel;
     let mut rows = Vec::with_capacity(techniques.len());
     for &technique in techniques {

@@ -19,7 +19,7 @@ use crate::integrator::sppm::{self, SppmSettings};
 use crate::render::{RenderOptions, RenderSession};
 use crate::scene::{IntegratorKind, Scene, SceneDescription};
 
-use super::waves::LabError;
+use super::waves::{check_reference, LabError};
 
 /// Every integrator name `compare --integrators` accepts, with its kind; `None` marks a
 /// name this build cannot render yet.
@@ -138,17 +138,7 @@ pub fn compare_integrators(
             "integrators: expected at least one integrator".into(),
         ));
     };
-    let pixels = u64::from(base.film.width) * u64::from(base.film.height);
-    if let Some(r) = reference {
-        if r.len() as u64 != pixels {
-            return Err(LabError::Argument(format!(
-                "reference: expected {}x{} = {pixels} pixels, found {}",
-                base.film.width,
-                base.film.height,
-                r.len()
-            )));
-        }
-    }
+    check_reference(base, reference)?;
     if let Budget::Time(t) = budget {
         if t.is_zero() {
             return Err(LabError::Argument("time budget: expected more than 0 seconds".into()));

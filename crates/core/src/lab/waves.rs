@@ -62,3 +62,20 @@ pub fn render_in_waves(
         points,
     })
 }
+
+/// Check that a reference image, when given, has the film's pixel count (row-major).
+///
+/// # Errors
+/// [`LabError::Argument`] naming both sizes.
+pub fn check_reference(base: &SceneDescription, reference: Option<&[crate::color::Rgb]>) -> Result<(), LabError> {
+    let pixels = u64::from(base.film.width) * u64::from(base.film.height);
+    match reference {
+        Some(r) if r.len() as u64 != pixels => Err(LabError::Argument(format!(
+            "reference: expected {}x{} = {pixels} pixels, found {}",
+            base.film.width,
+            base.film.height,
+            r.len()
+        ))),
+        _ => Ok(()),
+    }
+}
