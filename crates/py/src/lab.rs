@@ -21,6 +21,7 @@ use pyo3::types::{PyDict, PyList};
 use crate::errors::{image_error, lab_error};
 use crate::film::rgb_array;
 use crate::images::array_pixels;
+use crate::run::{run_cancellable, Progress};
 use crate::scene::{parse_technique, PyScene};
 
 /// A reference image: a path to an EXR file or an (H, W, 3) float32 array.
@@ -119,10 +120,13 @@ pub fn compare<'py>(
             Some(s) => Budget::Time(std::time::Duration::from_secs_f64(s)),
             None => Budget::Samples(desc.sampler.samples_per_pixel),
         };
-        let report = py
-            .detach(|| compare_integrators(&desc, &kinds, reference.as_deref(), threads, budget, |_, _| {}))
-            .map_err(|e| lab_error(&e))?;
-        py.check_signals()?;
+        let report = run_cancellable(
+            py,
+            0,
+            &mut Progress::Off,
+            |_, cancel| compare_integrators(&desc, &kinds, reference.as_deref(), threads, budget, cancel, |_, _| {}),
+            lab_error,
+        )?;
         let source = match report.reference {
             ReferenceSource::Given => "given".to_string(),
             ReferenceSource::LongRender(k) => format!("long render of {}", integrator_name(k)),
@@ -149,11 +153,13 @@ pub fn compare<'py>(
         }
         return Ok(out);
     }
-    let rows = py
-        .detach(|| compare_techniques(&desc, &techniques, reference.as_deref(), threads, |_| {}))
-        .map_err(|e| lab_error(&e))?;
-    // The render could not be interrupted; a Ctrl-C pressed meanwhile is raised now.
-    py.check_signals()?;
+    let rows = run_cancellable(
+        py,
+        0,
+        &mut Progress::Off,
+        |_, cancel| compare_techniques(&desc, &techniques, reference.as_deref(), threads, cancel, |_| {}),
+        lab_error,
+    )?;
     let out = PyList::empty(py);
     for r in &rows {
         let d = PyDict::new(py);

@@ -13,6 +13,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use mcrender_core::integrator::mlt::{self, MltSettings};
 use mcrender_core::integrator::sppm::{self, SppmSettings};
 use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Tile, Watch};
 use mcrender_core::scene::Scene;
@@ -159,6 +160,49 @@ pub fn render_sppm(
     })
 }
 
+/// Render `scene` with MLT (its own driver: a bootstrap, then Markov chains), off the GIL,
+/// progress counted in mutations, cancellable between bootstrap chunks and every few
+/// thousand mutations of a chain (a cancelled render raises, like the others).
+pub fn render_mlt(
+    py: Python<'_>,
+    scene: &Scene,
+    threads: Option<usize>,
+    progress: &ProgressArg,
+) -> PyResult<RenderOutput> {
+    let settings = MltSettings::from_scene(scene);
+    let pixels = u64::from(scene.film.width) * u64::from(scene.film.height);
+    let total = u64::from(settings.mutations_per_pixel) * pixels;
+    let mut progress = Progress::from_arg(py, progress, total, "mcrender (mlt)")?;
+    run_off_gil(py, total, &mut progress, |done, cancel| {
+        let start = Instant::now();
+        let report = |n: u64, _total: u64| {
+            done.fetch_max(n, Ordering::Relaxed);
+        };
+        let (out, threads) =
+            mlt::render_with_threads(scene, &settings, threads, &report, cancel).map_err(|source| {
+                RenderError::ThreadPool {
+                    threads: threads.unwrap_or(0),
+                    source,
+                }
+            })?;
+        if out.cancelled {
+            return Err(RenderError::Cancelled {
+                samples_done: out.mutations / pixels.max(1),
+            });
+        }
+        Ok(RenderOutput {
+            film: out.film,
+            stats: RenderStats {
+                elapsed: start.elapsed(),
+                paths: out.mutations,
+                trace: out.trace,
+                threads,
+                ..Default::default()
+            },
+        })
+    })
+}
+
 /// Run `render(done, cancel)` on a thread of its own with the GIL released; meanwhile
 /// poll Python's signals and report `done` of `total` every [`POLL`]. An exception from
 /// either (KeyboardInterrupt, a failing progress callback) sets `cancel` and is raised once
@@ -167,6 +211,23 @@ fn run_off_gil<F>(py: Python<'_>, total: u64, progress: &mut Progress, render: F
 where
     F: FnOnce(&AtomicU64, &AtomicBool) -> Result<RenderOutput, RenderError> + Send,
 {
+    run_cancellable(py, total, progress, render, render_error)
+}
+
+/// [`run_off_gil`] for any work `run(done, cancel)` whose error `E` becomes a Python
+/// exception by `to_py` (the estimator lab's comparisons use it too).
+pub fn run_cancellable<T, E, F>(
+    py: Python<'_>,
+    total: u64,
+    progress: &mut Progress,
+    run: F,
+    to_py: impl FnOnce(&E) -> PyErr,
+) -> PyResult<T>
+where
+    T: Send,
+    E: Send,
+    F: FnOnce(&AtomicU64, &AtomicBool) -> Result<T, E> + Send,
+{
     let done = AtomicU64::new(0);
     let cancel = AtomicBool::new(false);
     let (result, interrupted) = py.detach(|| {
@@ -174,7 +235,7 @@ where
             let (finished_tx, finished) = mpsc::channel::<()>();
             let (done, cancel) = (&done, &cancel);
             let worker = s.spawn(move || {
-                let r = render(done, cancel);
+                let r = run(done, cancel);
                 // The receiver may be gone only if the waiting loop panicked.
                 let _ = finished_tx.send(());
                 r
@@ -199,7 +260,7 @@ where
     let finished = match (result, interrupted) {
         (_, Some(e)) => Err(e),
         (Err(_), None) => Err(PyRuntimeError::new_err("mcrender: the render thread panicked")),
-        (Ok(Err(e)), None) => Err(render_error(&e)),
+        (Ok(Err(e)), None) => Err(to_py(&e)),
         (Ok(Ok(out)), None) => progress.update(py, total, total).map(|()| out),
     };
     let closed = progress.close(py);

@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 
 use crate::errors::{build_error, scene_error};
 use crate::film::{rgb_array, Image, PyFilm};
-use crate::run::{render_range, render_sppm, Progress, ProgressArg};
+use crate::run::{render_mlt, render_range, render_sppm, Progress, ProgressArg};
 
 /// A scene loaded from a file, ready to render.
 #[pyclass(name = "Scene", module = "mcrender")]
@@ -91,16 +91,23 @@ impl PyScene {
         if threads == Some(0) {
             return Err(PyValueError::new_err("threads: expected at least 1, found 0"));
         }
-        if desc.integrator.kind == IntegratorKind::Mlt {
-            return Err(PyValueError::new_err(
-                "mlt has its own driver, not available from Python yet: render it with `mcrender render`",
-            ));
-        }
         let whole = start == 0 && end.is_none() && window.is_none();
         if desc.integrator.kind == IntegratorKind::Sppm && !whole {
             return Err(PyValueError::new_err(
                 "sppm renders in iterations of camera and photon passes over the whole image: sample ranges and windows are not available",
             ));
+        }
+        if desc.integrator.kind == IntegratorKind::Mlt {
+            if !whole {
+                return Err(PyValueError::new_err(
+                    "mlt renders Markov chains over the whole image: sample ranges and windows are not available",
+                ));
+            }
+            if spp.is_some() {
+                return Err(PyValueError::new_err(
+                    "spp: mlt counts mutations per pixel, not samples: set scene.mutations_per_pixel",
+                ));
+            }
         }
         let end = end.unwrap_or(desc.sampler.samples_per_pixel);
         if start >= end {
@@ -111,6 +118,9 @@ impl PyScene {
         let scene = py.detach(|| Scene::build(&desc)).map_err(|e| build_error(&e))?;
         if desc.integrator.kind == IntegratorKind::Sppm {
             return render_sppm(py, &scene, threads, progress);
+        }
+        if desc.integrator.kind == IntegratorKind::Mlt {
+            return render_mlt(py, &scene, threads, progress);
         }
         let pixels = window.map_or(u64::from(desc.film.width) * u64::from(desc.film.height), |w| {
             w.pixel_count()
@@ -257,8 +267,8 @@ impl PyScene {
         self.desc.integrator.max_depth = value;
     }
 
-    /// The integrator: "path", "direct", "bdpt", "lightpath" or "sppm" (or "mlt", read only:
-    /// its driver is not available from Python yet).
+    /// The integrator: "path", "direct", "bdpt", "lightpath", "sppm" or "mlt" (whose length
+    /// is `mutations_per_pixel`, not `spp`).
     #[getter]
     fn get_integrator(&self) -> &'static str {
         match self.desc.integrator.kind {
@@ -279,12 +289,26 @@ impl PyScene {
             "bdpt" => IntegratorKind::Bdpt,
             "lightpath" => IntegratorKind::LightPath,
             "sppm" => IntegratorKind::Sppm,
+            "mlt" => IntegratorKind::Mlt,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\" or \"sppm\" (mlt has its own driver, not available from Python yet), found \"{value}\""
+                    "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\", \"sppm\" or \"mlt\", found \"{value}\""
                 )))
             }
         };
+        Ok(())
+    }
+
+    /// MLT's mutations per pixel over all chains (pbrt's `mutationsperpixel`; only the
+    /// mlt integrator reads it).
+    #[getter]
+    fn get_mutations_per_pixel(&self) -> u32 {
+        self.desc.integrator.mlt.mutations_per_pixel
+    }
+
+    #[setter]
+    fn set_mutations_per_pixel(&mut self, value: u32) -> PyResult<()> {
+        self.desc.integrator.mlt.mutations_per_pixel = positive("mutations_per_pixel", value)?;
         Ok(())
     }
 

@@ -105,15 +105,16 @@ def test_distributed_bdpt_with_splats_is_bit_identical(cluster, scene_path):
     assert image.tobytes() == local.tobytes()
 
 
-def test_distributed_sppm_is_refused(cluster, scene_path, tmp_path):
-    text = Path(scene_path).read_text().replace('Integrator "path"', 'Integrator "sppm"')
-    sppm_path = Path(scene_path).with_name("main-sppm.pbrt")
-    sppm_path.write_text(text)
+@pytest.mark.parametrize("integrator", ["sppm", "mlt"])
+def test_distributed_whole_image_integrators_are_refused(cluster, scene_path, integrator):
+    text = Path(scene_path).read_text().replace('Integrator "path"', f'Integrator "{integrator}"')
+    path = Path(scene_path).with_name(f"main-{integrator}.pbrt")
+    path.write_text(text)
     try:
-        with pytest.raises(ValueError, match="sppm"):
-            dist.render(sppm_path, progress=False)
+        with pytest.raises(ValueError, match=integrator):
+            dist.render(path, progress=False)
     finally:
-        sppm_path.unlink()
+        path.unlink()
 
 
 def chunk_workers() -> list[int]:

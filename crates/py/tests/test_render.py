@@ -152,6 +152,33 @@ def test_keyboard_interrupt_cancels_the_render(scene_path):
     assert scene.render(spp=1, progress=False).shape == (24, 32, 3)
 
 
+@pytest.mark.parametrize(
+    "how",
+    [
+        {"techniques": ["uniform-hemisphere", "mis"], "spp": 200_000},
+        {"integrators": ["path", "bdpt"], "spp": 200_000},
+        {"integrators": ["sppm"], "spp": 1_000_000},
+        {"integrators": ["mlt"], "time_budget": 600.0},
+    ],
+    ids=["techniques", "path-bdpt", "sppm", "mlt"],
+)
+def test_keyboard_interrupt_cancels_a_comparison(scene_path, how):
+    """Each of these would run for minutes: only the interrupt ends it early."""
+    scene = mcrender.load(scene_path)
+    scene.resolution = (32, 24)
+    reference = np.zeros((24, 32, 3), dtype=np.float32) + 0.1
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            mcrender.compare(scene, reference=reference, threads=1, **how)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10
+    assert mcrender.compare(scene, ["mis"], spp=1, threads=1)[0]["spp"] == 1
+
+
 def test_the_gil_is_released_while_rendering(scene_path):
     scene = mcrender.load(scene_path)
     result = {}
@@ -251,6 +278,47 @@ def test_light_tracing_and_sppm_equal_the_cli(cli, scene_path, tmp_path):
         scene.render_film(window=(0, 0, 8, 8))
     with pytest.raises(ValueError):
         scene.integrator = "photon"
+
+
+def test_mlt_equals_the_cli(cli, scene_path, tmp_path):
+    """MLT runs its own driver (bootstrap, then Markov chains); its length is the
+    mutations per pixel, so `spp=` is refused for it, as are sample ranges and windows."""
+    mlt_path = Path(scene_path).with_name("main-mlt.pbrt")
+    mlt_path.write_text(
+        Path(scene_path).read_text().replace(
+            'Integrator "path"',
+            'Integrator "mlt" "integer mutationsperpixel" [ 3 ] "integer bootstrapsamples" [ 2000 ] '
+            '"integer chains" [ 40 ]',
+        )
+    )
+    try:
+        out = tmp_path / "mlt.exr"
+        run_cli(cli, "render", mlt_path, "--resolution", "32x24", "--seed", 5, "-o", out, "-q")
+        scene = mcrender.load(mlt_path)
+    finally:
+        mlt_path.unlink()
+    assert scene.integrator == "mlt" and scene.mutations_per_pixel == 3
+    scene.resolution = (32, 24)
+    calls = []
+    image = scene.render(seed=5, threads=2, progress=lambda done, total: calls.append((done, total)))
+    assert image.tobytes() == mcrender.read_image(out).tobytes()
+    assert calls and calls[-1][0] == calls[-1][1] == 3 * 32 * 24
+    assert float(image.mean()) > 0
+    # More mutations: a different (still positive) estimate of the same image.
+    scene.mutations_per_pixel = 6
+    longer = scene.render(seed=5, progress=False)
+    assert longer.tobytes() != image.tobytes()
+    assert abs(float(longer.mean()) / float(image.mean()) - 1) < 0.5
+    with pytest.raises(ValueError, match="mutations per pixel"):
+        scene.render(spp=4, progress=False)
+    with pytest.raises(ValueError, match="mlt"):
+        scene.render_film(0, 1)
+    with pytest.raises(ValueError, match="mlt"):
+        scene.render_film(window=(0, 0, 8, 8))
+    with pytest.raises(ValueError, match="mutations_per_pixel"):
+        scene.mutations_per_pixel = 0
+    scene.integrator = "path"
+    scene.integrator = "mlt"
 
 
 @pytest.mark.parametrize("integrator", ["path", "bdpt", "lightpath"])

@@ -10,6 +10,7 @@
 //! images, contact sheet and log-log convergence plot.
 
 use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use anyhow::{bail, Result};
@@ -125,9 +126,16 @@ fn technique_report(
             base.sampler.kind
         );
     }
-    let rows = compare_techniques(base, &args.techniques, reference, args.scene.threads, |t| {
-        eprintln!("mcrender: compare: rendering {} at {spp} spp", t.name());
-    })?;
+    let rows = compare_techniques(
+        base,
+        &args.techniques,
+        reference,
+        args.scene.threads,
+        &AtomicBool::new(false),
+        |t| {
+            eprintln!("mcrender: compare: rendering {} at {spp} spp", t.name());
+        },
+    )?;
     let rows = rows
         .iter()
         .map(|r| Row {
@@ -185,16 +193,24 @@ fn integrator_report(
         Budget::Time(t) => format!("{} s each", t.as_secs_f64()),
         Budget::Samples(n) => format!("{n} spp (SPPM: iterations) each"),
     };
-    let report = compare_integrators(base, kinds, reference, args.scene.threads, budget, |k, long| {
-        if long {
-            eprintln!(
-                "mcrender: compare: rendering the reference with {} ({REFERENCE_FACTOR}x the budget, another seed)",
-                integrator_name(k)
-            );
-        } else {
-            eprintln!("mcrender: compare: rendering {} ({budget_text})", integrator_name(k));
-        }
-    })?;
+    let report = compare_integrators(
+        base,
+        kinds,
+        reference,
+        args.scene.threads,
+        budget,
+        &AtomicBool::new(false),
+        |k, long| {
+            if long {
+                eprintln!(
+                    "mcrender: compare: rendering the reference with {} ({REFERENCE_FACTOR}x the budget, another seed)",
+                    integrator_name(k)
+                );
+            } else {
+                eprintln!("mcrender: compare: rendering {} ({budget_text})", integrator_name(k));
+            }
+        },
+    )?;
     let reference_text = match (&report.reference, &args.reference) {
         (ReferenceSource::Given, Some(p)) => p.display().to_string(),
         (ReferenceSource::LongRender(k), _) => format!(

@@ -3,6 +3,7 @@
 //! the time saved and that the mean does not move.
 
 use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
 
 use anyhow::{bail, Result};
 use clap::Args;
@@ -84,7 +85,9 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
                 "mcrender: rr-study: rendering a reference without roulette at {} spp",
                 r.sampler.samples_per_pixel
             );
-            render_in_waves(&r, args.scene.threads, |_| 0.0)?.film.mean_image()
+            render_in_waves(&r, args.scene.threads, &AtomicBool::new(false), |_| 0.0)?
+                .film
+                .mean_image()
         }
     };
     let ref_mean = reference.iter().map(|c| f64::from(c.luminance())).sum::<f64>() / reference.len().max(1) as f64;
@@ -97,7 +100,7 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
     for &rr in &args.settings {
         let mut desc = base.clone();
         desc.integrator.russian_roulette = rr;
-        let prog = render_in_waves(&desc, args.scene.threads, |_| 0.0)?;
+        let prog = render_in_waves(&desc, args.scene.threads, &AtomicBool::new(false), |_| 0.0)?;
         let stats = FilmStatistics::measure(&prog.film, Some(&reference));
         let n = f64::from(w * h);
         let se = (prog

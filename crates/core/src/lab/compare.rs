@@ -4,6 +4,8 @@
 //! moments), relative MSE against a reference when one is given, render time, efficiency
 //! `1 / (variance x time)` and efficiency relative to the best technique.
 
+use std::sync::atomic::AtomicBool;
+
 use crate::color::Rgb;
 use crate::film::FilmStatistics;
 use crate::scene::{DirectStrategy, SceneDescription};
@@ -40,12 +42,14 @@ pub fn efficiency(variance: f64, seconds: f64) -> f64 {
 
 /// Render `base` once per technique (its other settings unchanged) and measure each.
 /// `reference`, when given, must have the film's pixel count (row-major). `on_start` is
-/// called before each technique renders (for progress messages).
+/// called before each technique renders (for progress messages). Setting `cancel` stops
+/// the comparison within a tile with [`crate::render::RenderError::Cancelled`].
 pub fn compare_techniques(
     base: &SceneDescription,
     techniques: &[DirectStrategy],
     reference: Option<&[Rgb]>,
     threads: Option<usize>,
+    cancel: &AtomicBool,
     mut on_start: impl FnMut(DirectStrategy),
 ) -> Result<Vec<CompareRow>, LabError> {
     if techniques.is_empty() {
@@ -62,7 +66,7 @@ pub fn compare_techniques(
             let s = FilmStatistics::measure(f, reference);
             s.rel_mse.unwrap_or(s.mean_variance)
         };
-        let progression = render_in_waves(&desc, threads, measure)?;
+        let progression = render_in_waves(&desc, threads, cancel, measure)?;
         let stats = FilmStatistics::measure(&progression.film, reference);
         let seconds = progression.time.as_secs_f64();
         rows.push(CompareRow {

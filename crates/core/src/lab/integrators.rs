@@ -9,14 +9,14 @@
 //! skipped. MLT is not progressive (its chains run to the end); at equal time it gets the
 //! mutations per pixel that two short calibration renders predict fit in the budget.
 
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use crate::color::Rgb;
 use crate::film::{Film, FilmStatistics};
 use crate::integrator::mlt::{self, MltSettings};
 use crate::integrator::sppm::{self, SppmSettings};
-use crate::render::{RenderOptions, RenderSession};
+use crate::render::{RenderError, RenderOptions, RenderSession, Watch};
 use crate::scene::{IntegratorKind, Scene, SceneDescription};
 
 use super::waves::{check_reference, LabError};
@@ -121,16 +121,19 @@ pub struct IntegratorReport {
 /// Render `base` once per integrator (its other settings unchanged) within `budget` and
 /// measure each against `reference` (row-major, the film's size) or, without one, against
 /// a long render of the first integrator. `on_start(kind, is_reference)` is called before
-/// each render (progress messages).
+/// each render (progress messages). Setting `cancel` stops the comparison within a work
+/// unit of the integrator rendering (a tile, an SPPM pass, a stretch of an MLT chain).
 ///
 /// # Errors
-/// No integrators, a reference of the wrong size, or a scene that cannot render.
+/// No integrators, a reference of the wrong size, a scene that cannot render, or
+/// [`RenderError::Cancelled`] when cancelled.
 pub fn compare_integrators(
     base: &SceneDescription,
     kinds: &[IntegratorKind],
     reference: Option<&[Rgb]>,
     threads: Option<usize>,
     budget: Budget,
+    cancel: &AtomicBool,
     mut on_start: impl FnMut(IntegratorKind, bool),
 ) -> Result<IntegratorReport, LabError> {
     let Some(&first) = kinds.first() else {
@@ -155,7 +158,7 @@ pub fn compare_integrators(
                 Budget::Samples(n) => Budget::Samples(n.saturating_mul(REFERENCE_FACTOR)),
                 Budget::Time(t) => Budget::Time(t * REFERENCE_FACTOR),
             };
-            let run = render_within(&desc, threads, long, &|_: &Film| 0.0)?;
+            let run = render_within(&desc, threads, long, cancel, &|_: &Film| 0.0)?;
             (Some(run.film.mean_image()), ReferenceSource::LongRender(first))
         }
     };
@@ -165,7 +168,7 @@ pub fn compare_integrators(
     let mut rows = Vec::with_capacity(kinds.len());
     for &kind in kinds {
         on_start(kind, false);
-        let run = render_within(&with_kind(base, kind), threads, budget, &measure)?;
+        let run = render_within(&with_kind(base, kind), threads, budget, cancel, &measure)?;
         let stats = FilmStatistics::measure(&run.film, Some(reference));
         let seconds = run.time.as_secs_f64();
         rows.push(IntegratorRow {
@@ -224,12 +227,13 @@ fn render_within(
     desc: &SceneDescription,
     threads: Option<usize>,
     budget: Budget,
+    cancel: &AtomicBool,
     measure: &(dyn Fn(&Film) -> f64 + Sync),
 ) -> Result<Run, LabError> {
     let scene = Scene::build(desc)?;
     match desc.integrator.kind {
-        IntegratorKind::Sppm => return render_sppm(&scene, threads, budget, measure),
-        IntegratorKind::Mlt => return render_mlt(&scene, threads, budget, measure),
+        IntegratorKind::Sppm => return render_sppm(&scene, threads, budget, cancel, measure),
+        IntegratorKind::Mlt => return render_mlt(&scene, threads, budget, cancel, measure),
         _ => {}
     }
     let opts = RenderOptions {
@@ -254,7 +258,11 @@ fn render_within(
         if len == 0 {
             break;
         }
-        let s = session.advance(done..done + len, &())?;
+        let watch = Watch {
+            progress: |_, _| {},
+            cancel,
+        };
+        let s = session.advance(done..done + len, &watch)?;
         done += len;
         time += s.elapsed;
         rays += s.trace.rays + s.trace.shadow_rays;
@@ -275,6 +283,7 @@ fn render_sppm(
     scene: &Scene,
     threads: Option<usize>,
     budget: Budget,
+    cancel: &AtomicBool,
     measure: &(dyn Fn(&Film) -> f64 + Sync),
 ) -> Result<Run, LabError> {
     let mut settings = SppmSettings::from_scene(scene);
@@ -287,7 +296,6 @@ fn render_sppm(
         .num_threads(threads)
         .build()
         .map_err(|e| LabError::Argument(format!("cannot start the render threads: {e}")))?;
-    let cancel = AtomicBool::new(false);
     let start = Instant::now();
     // Time spent measuring, excluded from the render time.
     let mut measuring = Duration::ZERO;
@@ -303,7 +311,10 @@ fn render_sppm(
         }
     };
     let observer: sppm::IterationObserver<'_> = &mut observe;
-    let out = pool.install(|| sppm::render_observed(scene, &settings, &|_, _| {}, &cancel, Some(observer)));
+    let out = pool.install(|| sppm::render_observed(scene, &settings, &|_, _| {}, cancel, Some(observer)));
+    if cancel.load(Ordering::Relaxed) {
+        return Err(cancelled(u64::from(out.iterations)));
+    }
     let time = start.elapsed().saturating_sub(measuring);
     Ok(Run {
         film: out.film,
@@ -323,13 +334,17 @@ fn mlt_once(
     scene: &Scene,
     threads: Option<usize>,
     mutations_per_pixel: u32,
+    cancel: &AtomicBool,
 ) -> Result<(Film, Duration, u64), LabError> {
     let mut settings = MltSettings::from_scene(scene);
     settings.mutations_per_pixel = mutations_per_pixel.max(1);
-    let cancel = AtomicBool::new(false);
     let start = Instant::now();
-    let (out, _) = mlt::render_with_threads(scene, &settings, threads, &|_, _| {}, &cancel)
+    let (out, _) = mlt::render_with_threads(scene, &settings, threads, &|_, _| {}, cancel)
         .map_err(|e| LabError::Argument(format!("cannot start the render threads: {e}")))?;
+    if out.cancelled {
+        let pixels = u64::from(scene.film.width) * u64::from(scene.film.height);
+        return Err(cancelled(out.mutations / pixels.max(1)));
+    }
     Ok((out.film, start.elapsed(), out.trace.rays + out.trace.shadow_rays))
 }
 
@@ -342,13 +357,14 @@ fn render_mlt(
     scene: &Scene,
     threads: Option<usize>,
     budget: Budget,
+    cancel: &AtomicBool,
     measure: &(dyn Fn(&Film) -> f64 + Sync),
 ) -> Result<Run, LabError> {
     let mutations = match budget {
         Budget::Samples(n) => n.max(1),
         Budget::Time(t) => {
-            let (_, one, _) = mlt_once(scene, threads, 1)?;
-            let (_, more, _) = mlt_once(scene, threads, MLT_CALIBRATION)?;
+            let (_, one, _) = mlt_once(scene, threads, 1, cancel)?;
+            let (_, more, _) = mlt_once(scene, threads, MLT_CALIBRATION, cancel)?;
             // The slope of two noisy timings can be tiny or negative; never take a mutation
             // per pixel to cost less than a quarter of the calibration's average (which
             // includes the bootstrap), or the render would be asked for millions of them.
@@ -360,7 +376,7 @@ fn render_mlt(
             fit.clamp(1.0, f64::from(u32::MAX)) as u32
         }
     };
-    let (film, time, rays) = mlt_once(scene, threads, mutations)?;
+    let (film, time, rays) = mlt_once(scene, threads, mutations, cancel)?;
     let points = vec![(time.as_secs_f64(), measure(&film))];
     Ok(Run {
         film,
@@ -369,6 +385,11 @@ fn render_mlt(
         rays,
         points,
     })
+}
+
+/// The error of a comparison stopped by its cancel flag.
+fn cancelled(samples_done: u64) -> LabError {
+    LabError::Render(RenderError::Cancelled { samples_done })
 }
 
 #[cfg(test)]

@@ -2,10 +2,11 @@
 //! every wave: the data of a convergence plot. The waves continue one
 //! [`RenderSession`]'s film, so the final film is the one a single pass gives.
 
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use crate::film::Film;
-use crate::render::{RenderError, RenderOptions, RenderSession};
+use crate::render::{RenderError, RenderOptions, RenderSession, Watch};
 use crate::scene::{BuildError, Scene, SceneDescription};
 
 /// Why a study could not run.
@@ -38,10 +39,12 @@ pub struct Progression {
 
 /// Render `desc` up to its sample count in waves 1, 2, 4, ... (the last wave tops up to
 /// the sample count) of one render session, calling `measure` on the film after each. The
-/// final film is bit-identical to a render in one pass.
+/// final film is bit-identical to a render in one pass. Setting `cancel` stops the render
+/// within a tile with [`RenderError::Cancelled`].
 pub fn render_in_waves(
     desc: &SceneDescription,
     threads: Option<usize>,
+    cancel: &AtomicBool,
     measure: impl Fn(&Film) -> f64,
 ) -> Result<Progression, LabError> {
     let scene = Scene::build(desc)?;
@@ -52,7 +55,11 @@ pub fn render_in_waves(
     };
     let mut session = RenderSession::new(&scene, &opts)?;
     let mut points = Vec::new();
-    let stats = session.render_in_waves(0..spp, &(), |film, _| {
+    let watch = Watch {
+        progress: |_, _| {},
+        cancel,
+    };
+    let stats = session.render_in_waves(0..spp, &watch, |film, _| {
         points.push((film.samples_per_pixel() as u32, measure(film)));
     })?;
     Ok(Progression {

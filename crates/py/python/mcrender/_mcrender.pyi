@@ -50,6 +50,9 @@ class Scene:
     seed: int
     max_depth: int
     integrator: str
+    """"path", "direct", "bdpt", "lightpath", "sppm" or "mlt"."""
+    mutations_per_pixel: int
+    """MLT's length (the mlt integrator ignores spp)."""
     direct: str
     def render(
         self,

@@ -212,6 +212,11 @@ def render_film(
             "sppm renders in photon passes over the whole image and cannot be split into bands: "
             "render it in one process (Scene.render)"
         )
+    if local.integrator == "mlt":
+        raise ValueError(
+            "mlt renders Markov chains over the whole image and cannot be split into bands: "
+            "render it in one process (Scene.render)"
+        )
     width, height = local.resolution
 
     files, main = scene_files(scene_path)
