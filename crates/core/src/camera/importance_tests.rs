@@ -3,10 +3,11 @@
 //! camera rays, and `sample_wi` finds the ray `generate_ray` would trace.
 
 use super::*;
+use crate::camera::CameraDesc;
+use crate::film::FilmDesc;
 use crate::math::{Mat4, Transform};
 use crate::sampling::chi2::{suite_seed, Chi2Test, SphereGrid, SIGNIFICANCE};
 use crate::sampling::{sample_uniform_sphere, uniform_sphere_pdf, Pcg32};
-use crate::scene::{CameraDesc, FilmDesc};
 
 /// A wide, turned and moved camera (`lens_radius` 0 for a pinhole).
 fn camera(lens_radius: f32) -> PerspectiveCamera {

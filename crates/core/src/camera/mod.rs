@@ -2,8 +2,10 @@
 //! from film positions and, for light tracing, report the importance of rays reaching them
 //! ([`Camera::we`], [`Camera::pdf_we`], [`Camera::sample_wi`]).
 
+mod desc;
 mod perspective;
 
+pub use desc::CameraDesc;
 pub use perspective::{CameraWiSample, PerspectiveCamera};
 
 use crate::math::{Ray, Vec2, Vec3};

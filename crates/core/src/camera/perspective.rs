@@ -8,9 +8,10 @@ mod importance;
 
 pub use importance::CameraWiSample;
 
+use super::CameraDesc;
+use crate::film::FilmDesc;
 use crate::math::{Frame, Ray, Transform, Vec2, Vec3};
 use crate::sampling::sample_uniform_disk_concentric;
-use crate::scene::{CameraDesc, FilmDesc};
 
 /// Perspective projection with an optional thin lens.
 #[derive(Clone, Debug)]

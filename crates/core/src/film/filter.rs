@@ -12,8 +12,8 @@ pub use box_filter::BoxFilter;
 pub use gaussian_filter::GaussianFilter;
 pub use triangle_filter::TriangleFilter;
 
+use super::FilterDesc;
 use crate::math::Vec2;
-use crate::scene::FilterDesc;
 
 /// An offset from the pixel centre drawn from a filter, with its weight.
 #[derive(Clone, Copy, Debug, PartialEq)]

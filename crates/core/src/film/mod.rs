@@ -2,6 +2,7 @@
 
 mod accumulator;
 mod compare;
+mod desc;
 mod filter;
 mod splat;
 mod splat_sum;
@@ -11,6 +12,7 @@ pub use accumulator::{Film, PixelStats};
 pub use compare::{
     block_means_of, downsample_box, pixel_rel_error, CompareError, ImageComparison, BLOCK_REL_EPSILON, DEFAULT_BLOCK,
 };
+pub use desc::{FilmDesc, FilterDesc};
 pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
 pub use splat::Splat;
 pub use splat_sum::{SplatSum, MAX_SPLAT};

@@ -20,7 +20,7 @@ pub use hash::{hash_absorb, hash_float, hash_u64s, mix_bits};
 pub use mis::{balance_heuristic, power_heuristic};
 pub use mlt::MltSampler;
 pub use rng::Pcg32;
-pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, StratifiedSampler};
+pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, SamplerDesc, SamplerKind, StratifiedSampler};
 pub use scramble::{nested_uniform_scramble, permutation_element};
 pub use source::SampleSource;
 pub use warp::*;

@@ -3,9 +3,12 @@
 //! Everything here is already resolved: transforms are matrices, named materials are indices,
 //! meshes are in world space. No strings, files or parsing state reach the core.
 
+pub use crate::camera::CameraDesc;
 use crate::color::Rgb;
+pub use crate::film::{FilmDesc, FilterDesc};
 pub use crate::light::EnvMapping;
 use crate::math::{Transform, Vec2, Vec3};
+pub use crate::sampling::{SamplerDesc, SamplerKind};
 pub use crate::texture::{FloatTexture, RgbTexture};
 
 /// Index into [`SceneDescription::materials`].
@@ -52,128 +55,6 @@ pub struct InstanceDesc {
     pub object: u32,
     /// World-from-object transform.
     pub world_from_instance: Transform,
-}
-
-/// A pinhole or thin-lens perspective camera (pbrt `Camera "perspective"`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct CameraDesc {
-    /// World-from-camera transform. Camera space is pbrt's: +x right in the image, +y up,
-    /// looking down +z.
-    pub world_from_camera: Transform,
-    /// Full field of view in degrees, spanning the shorter image axis.
-    pub fov_degrees: f32,
-    /// Lens radius (0 = pinhole).
-    pub lens_radius: f32,
-    /// Distance to the plane in focus (used when `lens_radius > 0`).
-    pub focal_distance: f32,
-    /// Screen window `[x_min, x_max, y_min, y_max]`; `None` = pbrt's default from the aspect
-    /// ratio.
-    pub screen_window: Option<[f32; 4]>,
-}
-
-impl Default for CameraDesc {
-    fn default() -> Self {
-        Self {
-            world_from_camera: Transform::IDENTITY,
-            fov_degrees: 90.0,
-            lens_radius: 0.0,
-            focal_distance: 1e6,
-            screen_window: None,
-        }
-    }
-}
-
-/// Image size in pixels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FilmDesc {
-    /// Width.
-    pub width: u32,
-    /// Height.
-    pub height: u32,
-}
-
-impl Default for FilmDesc {
-    fn default() -> Self {
-        Self {
-            width: 1280,
-            height: 720,
-        }
-    }
-}
-
-/// Pixel reconstruction filter; radii are in pixels.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FilterDesc {
-    /// Constant over `[-r, r]^2`.
-    Box {
-        /// Radius per axis.
-        radius: Vec2,
-    },
-    /// Separable tent `max(0, r - |x|)`.
-    Triangle {
-        /// Radius per axis.
-        radius: Vec2,
-    },
-    /// Separable Gaussian minus its value at the radius (pbrt-v4's `gaussian`).
-    Gaussian {
-        /// Radius per axis.
-        radius: Vec2,
-        /// Standard deviation in pixels.
-        sigma: f32,
-    },
-}
-
-impl Default for FilterDesc {
-    fn default() -> Self {
-        Self::Gaussian {
-            radius: Vec2::splat(1.5),
-            sigma: 0.5,
-        }
-    }
-}
-
-/// Which sample generator to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SamplerKind {
-    /// Independent uniform random numbers from a PCG stream.
-    Independent,
-    /// Stratified samples (pbrt `stratified`): every dimension falls in its own stratum of
-    /// an `x_samples` x `y_samples` grid (2-D) or of `x_samples * y_samples` intervals (1-D),
-    /// the strata shuffled independently per dimension; jittered inside the stratum, or at
-    /// its centre without `jitter`.
-    Stratified {
-        /// Strata along x of each 2-D dimension pair.
-        x_samples: u32,
-        /// Strata along y of each 2-D dimension pair.
-        y_samples: u32,
-        /// Random position inside the stratum (else its centre).
-        jitter: bool,
-    },
-    /// Owen-scrambled Sobol' points (Burley 2020, "Practical Hash-based Owen Scrambling"),
-    /// with a per-pixel shuffle of the sequence; used for pbrt's `sobol`, `zsobol`, `halton`,
-    /// `pmj02bn` and `paddedsobol`.
-    OwenSobol,
-}
-
-/// Sampler settings.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SamplerDesc {
-    /// The generator.
-    pub kind: SamplerKind,
-    /// Samples per pixel.
-    pub samples_per_pixel: u32,
-    /// Seed; together with pixel and sample index it fixes every random number.
-    pub seed: u64,
-}
-
-impl Default for SamplerDesc {
-    fn default() -> Self {
-        Self {
-            kind: SamplerKind::Independent,
-            samples_per_pixel: 16,
-            seed: 0,
-        }
-    }
 }
 
 /// Which light transport algorithm.

@@ -3,9 +3,10 @@
 use std::sync::Arc;
 
 use super::*;
+use crate::camera::CameraDesc;
 use crate::camera::PerspectiveCamera;
+use crate::film::FilmDesc;
 use crate::math::{Transform, Vec2, Vec3};
-use crate::scene::{CameraDesc, FilmDesc};
 use crate::shape::{Interaction, SurfaceInteraction};
 
 fn close(a: Rgb, b: Rgb, tol: f32) -> bool {

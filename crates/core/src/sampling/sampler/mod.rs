@@ -4,18 +4,19 @@
 //! the dimension is the number of values drawn since [`Sampler::start_pixel_sample`]; so an
 //! image does not depend on the thread count, and a failing sample can be replayed alone.
 
+mod desc;
 mod independent;
 mod sobol;
 mod stratified;
 #[cfg(test)]
 mod tests_quality;
 
+pub use desc::{SamplerDesc, SamplerKind};
 pub use independent::IndependentSampler;
 pub use sobol::OwenSobolSampler;
 pub use stratified::StratifiedSampler;
 
 use crate::math::{UVec2, Vec2};
-use crate::scene::{SamplerDesc, SamplerKind};
 
 /// A sample generator; one per thread, restarted for every pixel sample.
 #[derive(Clone, Debug)]

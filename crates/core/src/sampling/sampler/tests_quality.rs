@@ -4,8 +4,8 @@
 
 use super::sobol::{sobol_u32, SOBOL_DIMENSIONS};
 use super::Sampler;
+use super::{SamplerDesc, SamplerKind};
 use crate::math::UVec2;
-use crate::scene::{SamplerDesc, SamplerKind};
 
 fn make(kind: SamplerKind, spp: u32, seed: u64) -> Sampler {
     Sampler::new(&SamplerDesc {
