@@ -12,13 +12,13 @@ use std::sync::Arc;
 
 use glam::Mat4;
 use mcrender_core::math::Transform;
-use mcrender_core::scene::{
-    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, LightDesc, MaterialDesc, MaterialId, ObjectDesc, SamplerDesc,
-    SceneDescription, ShapeDesc,
-};
+use mcrender_core::scene::{LightDesc, MaterialDesc, MaterialId, ObjectDesc, SceneDescription, ShapeDesc};
 
+use super::files::InputFiles;
 use super::graphics_state::{GraphicsState, MaterialRef};
+use super::instancing::Instancing;
 use super::materials::resolve_material;
+use super::options::SceneOptions;
 use super::params::ParamSet;
 use super::LoadedScene;
 use crate::error::{Location, SceneError};
@@ -40,46 +40,39 @@ struct Scope {
     directive: &'static str,
 }
 
-/// Collects the scene while the parser walks the directives.
+/// What the world block adds: named materials and textures, shapes and lights.
+#[derive(Debug, Default)]
+pub struct WorldContents {
+    /// `MakeNamedMaterial`s, with where each was defined.
+    pub named_materials: HashMap<String, (MaterialRef, Location)>,
+    /// Named textures and the MIP maps of the images read.
+    pub textures: super::textures::NamedTextures,
+    /// Shapes outside objects, with their materials.
+    pub shapes: Vec<(ShapeDesc, MaterialRef)>,
+    /// Lights that are not shapes.
+    pub lights: Vec<LightDesc>,
+}
+
+/// Collects the scene while the parser walks the directives. The block structure,
+/// graphics state and named coordinate systems are this file's; the rest is grouped by
+/// the files that fill it: [`SceneOptions`] (options.rs), [`WorldContents`] (materials,
+/// textures, shapes, lights), [`Instancing`] (instancing.rs), [`InputFiles`] (files.rs).
 #[derive(Debug)]
 pub struct SceneBuilder {
     block: Block,
     pub(super) state: GraphicsState,
     scopes: Vec<Scope>,
     named_coordinate_systems: HashMap<String, Mat4>,
-    /// Directory of the top-level file: pbrt resolves relative file names against it.
-    search_dir: PathBuf,
-    /// Directory of the file being parsed (tried second).
-    pub(super) current_dir: PathBuf,
-    pub(super) camera: CameraDesc,
-    pub(super) film: FilmDesc,
-    pub(super) filter: FilterDesc,
-    pub(super) sampler: SamplerDesc,
-    pub(super) sampler_seed: Option<i32>,
-    pub(super) option_seed: Option<i32>,
-    pub(super) integrator: IntegratorDesc,
-    pub(super) output_filename: Option<String>,
-    pub(super) named_materials: HashMap<String, (MaterialRef, Location)>,
-    /// Named textures and the MIP maps of the images read.
-    pub(super) textures: super::textures::NamedTextures,
-    pub(super) shapes: Vec<(ShapeDesc, MaterialRef)>,
-    pub(super) lights: Vec<LightDesc>,
-    /// Defined objects, by index; [`Self::object_ids`] maps names to indices.
-    pub(super) objects: Vec<super::instancing::ObjectDef>,
-    pub(super) object_ids: HashMap<String, u32>,
-    /// The object being defined (between `ObjectBegin` and `ObjectEnd`).
-    pub(super) current_object: Option<(String, super::instancing::ObjectDef)>,
-    pub(super) instances: Vec<mcrender_core::scene::InstanceDesc>,
+    /// The options block's settings.
+    pub(super) options: SceneOptions,
+    /// The world block's materials, textures, shapes and lights.
+    pub(super) world: WorldContents,
+    /// Objects and their instances.
+    pub(super) instancing: Instancing,
+    /// Files and memory.
+    pub(super) input: InputFiles,
     warnings: Vec<String>,
     warned_transform_begin: bool,
-    /// Where files are read from.
-    pub(super) files: Arc<dyn FileSource>,
-    /// What the loader may read and allocate.
-    pub(super) limits: LoadLimits,
-    /// Bytes reserved so far for images and meshes ([`Self::reserve_memory`]).
-    pub(super) memory_used: u64,
-    /// The part of [`Self::memory_used`] that images take.
-    pub(super) image_bytes: u64,
 }
 
 impl SceneBuilder {
@@ -87,32 +80,14 @@ impl SceneBuilder {
     #[must_use]
     pub fn new(search_dir: &Path, files: Arc<dyn FileSource>, limits: LoadLimits) -> Self {
         Self {
-            files,
-            limits,
-            memory_used: 0,
-            image_bytes: 0,
             block: Block::Options,
             state: GraphicsState::default(),
             scopes: Vec::new(),
             named_coordinate_systems: HashMap::new(),
-            search_dir: search_dir.to_path_buf(),
-            current_dir: search_dir.to_path_buf(),
-            camera: CameraDesc::default(),
-            film: FilmDesc::default(),
-            filter: FilterDesc::default(),
-            sampler: SamplerDesc::default(),
-            sampler_seed: None,
-            option_seed: None,
-            integrator: IntegratorDesc::default(),
-            output_filename: None,
-            textures: super::textures::NamedTextures::default(),
-            named_materials: HashMap::new(),
-            shapes: Vec::new(),
-            lights: Vec::new(),
-            objects: Vec::new(),
-            object_ids: HashMap::new(),
-            current_object: None,
-            instances: Vec::new(),
+            options: SceneOptions::default(),
+            world: WorldContents::default(),
+            instancing: Instancing::default(),
+            input: InputFiles::new(search_dir, files, limits),
             warnings: Vec::new(),
             warned_transform_begin: false,
         }
@@ -123,19 +98,19 @@ impl SceneBuilder {
     /// # Errors
     /// When the total would pass [`LoadLimits::max_memory`]; the message names both figures.
     pub fn reserve_memory(&mut self, bytes: u64, what: &str, loc: &Location) -> Result<(), SceneError> {
-        let total = self.memory_used.saturating_add(bytes);
-        if total > self.limits.max_memory {
+        let total = self.input.memory_used.saturating_add(bytes);
+        if total > self.input.limits.max_memory {
             return Err(SceneError::invalid(
                 loc,
                 format!(
                     "{what} needs about {} (scene so far: {}), over the memory limit of {} (see --max-memory)",
                     format_bytes(bytes),
-                    format_bytes(self.memory_used),
-                    format_bytes(self.limits.max_memory)
+                    format_bytes(self.input.memory_used),
+                    format_bytes(self.input.limits.max_memory)
                 ),
             ));
         }
-        self.memory_used = total;
+        self.input.memory_used = total;
         Ok(())
     }
 
@@ -154,12 +129,12 @@ impl SceneBuilder {
     /// parsed is tried as well.
     #[must_use]
     pub fn resolve(&self, name: &str) -> PathBuf {
-        let primary = self.search_dir.join(name);
-        if self.files.exists(&primary) {
+        let primary = self.input.search_dir.join(name);
+        if self.input.files.exists(&primary) {
             return primary;
         }
-        let secondary = self.current_dir.join(name);
-        if self.files.exists(&secondary) {
+        let secondary = self.input.current_dir.join(name);
+        if self.input.files.exists(&secondary) {
             secondary
         } else {
             primary
@@ -338,7 +313,7 @@ impl SceneBuilder {
 
         let mut materials: Vec<MaterialDesc> = Vec::new();
         let mut material_ids: HashMap<String, MaterialId> = HashMap::new();
-        let named = &self.named_materials;
+        let named = &self.world.named_materials;
         let mut resolve = |list: Vec<(ShapeDesc, MaterialRef)>| -> Result<Vec<ShapeDesc>, SceneError> {
             let mut shapes = Vec::with_capacity(list.len());
             for (mut shape, material) in list {
@@ -348,39 +323,40 @@ impl SceneBuilder {
             }
             Ok(shapes)
         };
-        let shapes = resolve(std::mem::take(&mut self.shapes))?;
-        let objects = std::mem::take(&mut self.objects)
+        let shapes = resolve(std::mem::take(&mut self.world.shapes))?;
+        let objects = std::mem::take(&mut self.instancing.defined)
             .into_iter()
             .map(|o| resolve(o.shapes).map(|shapes| ObjectDesc { shapes }))
             .collect::<Result<Vec<_>, _>>()?;
 
-        if self.lights.is_empty() && !shapes.iter().any(|s| s.area_light.is_some()) {
+        if self.world.lights.is_empty() && !shapes.iter().any(|s| s.area_light.is_some()) {
             self.warnings.push(format!(
                 "{end}: warning: the scene has no lights; the image will be black"
             ));
         }
 
-        let mut sampler = self.sampler;
+        let options = self.options;
+        let mut sampler = options.sampler;
         // pbrt: the Sampler's "seed" parameter, else Option "seed", else 0. Negative seeds keep
         // their 32-bit pattern.
-        sampler.seed = u64::from(self.sampler_seed.or(self.option_seed).unwrap_or(0) as u32);
+        sampler.seed = u64::from(options.sampler_seed.or(options.option_seed).unwrap_or(0) as u32);
 
         Ok(LoadedScene {
             description: SceneDescription {
-                camera: self.camera,
-                film: self.film,
-                filter: self.filter,
+                camera: options.camera,
+                film: options.film,
+                filter: options.filter,
                 sampler,
-                integrator: self.integrator,
+                integrator: options.integrator,
                 materials,
                 shapes,
-                lights: self.lights,
+                lights: self.world.lights,
                 objects,
-                instances: self.instances,
+                instances: self.instancing.instances,
             },
-            output_filename: self.output_filename,
+            output_filename: options.output_filename,
             warnings: self.warnings,
-            image_bytes: self.image_bytes,
+            image_bytes: self.input.image_bytes,
         })
     }
 }

@@ -7,7 +7,12 @@ use crate::error::{io_error_text, Location, SceneError};
 use crate::image_io::{decode_image, image_dimensions, ColorEncoding, ImageError, ImageFormat, ImageRgb};
 use crate::ply::{read_ply_bytes, PlyError, PlyMesh};
 
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
 use super::builder::SceneBuilder;
+use crate::limits::LoadLimits;
+use crate::source::FileSource;
 
 /// Peak bytes of parsing a PLY file per byte of file: `ply-rs` keeps a property map per
 /// vertex and a list per face, several times the binary size.
@@ -22,11 +27,44 @@ pub enum ImageUse {
     Environment,
 }
 
+/// Where the scene's files come from and the memory the load has reserved so far.
+#[derive(Debug)]
+pub struct InputFiles {
+    /// Where files are read from.
+    pub files: Arc<dyn FileSource>,
+    /// What the loader may read and allocate.
+    pub limits: LoadLimits,
+    /// Directory of the top-level file: pbrt resolves relative file names against it.
+    pub search_dir: PathBuf,
+    /// Directory of the file being parsed (tried second).
+    pub current_dir: PathBuf,
+    /// Bytes reserved so far for images and meshes ([`SceneBuilder::reserve_memory`]).
+    pub memory_used: u64,
+    /// The part of [`Self::memory_used`] that images take.
+    pub image_bytes: u64,
+}
+
+impl InputFiles {
+    /// Files from `files` for a scene whose top-level file lives in `search_dir`.
+    #[must_use]
+    pub fn new(search_dir: &Path, files: Arc<dyn FileSource>, limits: LoadLimits) -> Self {
+        Self {
+            files,
+            limits,
+            search_dir: search_dir.to_path_buf(),
+            current_dir: search_dir.to_path_buf(),
+            memory_used: 0,
+            image_bytes: 0,
+        }
+    }
+}
+
 impl SceneBuilder {
     /// The bytes of the file `filename` (as written in the scene) refers to.
     fn read_scene_file(&self, filename: &str, what: &str, loc: &Location) -> Result<Vec<u8>, SceneError> {
         let path = self.resolve(filename);
-        self.files
+        self.input
+            .files
             .read(&path)
             .map_err(|e| SceneError::io(loc, format!("cannot open {what} \"{filename}\": {}", io_error_text(&e))))
     }
@@ -37,6 +75,7 @@ impl SceneBuilder {
         let what = format!("PLY file \"{filename}\"");
         // Parsing needs a multiple of the file size; checked before the file is read.
         let transient = self
+            .input
             .files
             .len(&path)
             .unwrap_or(0)
@@ -53,7 +92,7 @@ impl SceneBuilder {
                 }
             })
         });
-        self.memory_used -= transient;
+        self.input.memory_used -= transient;
         let mesh = parsed?;
         let triangles = mesh.indices.len() as u64 / 3;
         self.reserve_memory(
@@ -94,7 +133,7 @@ impl SceneBuilder {
             ImageUse::Environment => crate::limits::env_image_bytes(w, h),
         };
         self.reserve_memory(need, &format!("image \"{filename}\" ({w}x{h})"), loc)?;
-        self.image_bytes = self.image_bytes.saturating_add(need);
+        self.input.image_bytes = self.input.image_bytes.saturating_add(need);
         let image = decode_image(&path, format, &bytes, encoding).map_err(image_error)?;
         drop(bytes);
         if image.pixels.iter().any(|p| !p.is_finite()) {

@@ -90,7 +90,7 @@ impl SceneBuilder {
             "distant" => self.distant_light(params, loc)?,
             _ => self.infinite_light(params, loc)?,
         };
-        self.lights.push(light);
+        self.world.lights.push(light);
         self.warn_unused(params);
         Ok(())
     }

@@ -58,7 +58,7 @@ impl SceneBuilder {
     pub fn make_named_material(&mut self, name: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("MakeNamedMaterial", loc)?;
         params.add_inherited(&self.state.attributes.material);
-        if let Some((_, first)) = self.named_materials.get(name) {
+        if let Some((_, first)) = self.world.named_materials.get(name) {
             return Err(SceneError::invalid(
                 loc,
                 format!("named material \"{name}\" is already defined at {first}"),
@@ -71,7 +71,9 @@ impl SceneBuilder {
             ));
         };
         let material = self.material_desc(&kind, params, &kind_loc)?;
-        self.named_materials.insert(name.to_string(), (material, loc.clone()));
+        self.world
+            .named_materials
+            .insert(name.to_string(), (material, loc.clone()));
         Ok(())
     }
 
@@ -116,7 +118,7 @@ impl SceneBuilder {
             }
         };
         let loc = p.loc.clone();
-        let amount = self.textures.float(params, "amount", 0.5)?;
+        let amount = self.world.textures.float(params, "amount", 0.5)?;
         if amount.constant().is_some_and(|a| !a.is_finite()) {
             let p = params.get("amount").map_or(&params.loc, |p| &p.loc);
             return Err(SceneError::invalid(
@@ -143,6 +145,7 @@ impl SceneBuilder {
         match kind {
             "diffuse" => {
                 let reflectance = self
+                    .world
                     .textures
                     .rgb(params, "reflectance")?
                     .unwrap_or_else(|| Rgb::splat(0.5).into());
@@ -210,8 +213,12 @@ impl SceneBuilder {
             }
             "diffusetransmission" => {
                 let default = || RgbTexture::from(Rgb::splat(0.25));
-                let reflectance = self.textures.rgb(params, "reflectance")?.unwrap_or_else(default);
-                let transmittance = self.textures.rgb(params, "transmittance")?.unwrap_or_else(default);
+                let reflectance = self.world.textures.rgb(params, "reflectance")?.unwrap_or_else(default);
+                let transmittance = self
+                    .world
+                    .textures
+                    .rgb(params, "transmittance")?
+                    .unwrap_or_else(default);
                 for (name, t) in [("reflectance", &reflectance), ("transmittance", &transmittance)] {
                     if let Some(c) = t.constant() {
                         check_unit_interval(params, name, c)?;
@@ -334,7 +341,7 @@ fn slab(builder: &SceneBuilder, params: &ParamSet) -> Result<Slab, SceneError> {
             format!("\"{name}\" of {} must be {what}", params.owner),
         ))
     };
-    let thickness = builder.textures.float(params, "thickness", 0.01)?;
+    let thickness = builder.world.textures.float(params, "thickness", 0.01)?;
     if thickness.constant().is_some_and(|t| !(t >= 0.0 && t.is_finite())) {
         return bad("thickness", "a finite number >= 0");
     }
@@ -344,7 +351,7 @@ fn slab(builder: &SceneBuilder, params: &ParamSet) -> Result<Slab, SceneError> {
     if let Some(a) = albedo.constant() {
         check_unit_interval(params, "albedo", a)?;
     }
-    let g = builder.textures.float(params, "g", 0.0)?;
+    let g = builder.world.textures.float(params, "g", 0.0)?;
     if g.constant().is_some_and(|g| !(-1.0..=1.0).contains(&g)) {
         return bad("g", "between -1 and 1");
     }
@@ -512,7 +519,7 @@ impl SceneBuilder {
             .color(name, Rgb::WHITE, SpectrumRole::Albedo)
             .map(|c| Some(c.into())),
         ParamType::Spectrum => unsupported("a named spectrum; give an rgb value or (wavelength, value) pairs"),
-        ParamType::Texture => self.textures.rgb_reference(p, &params.owner).map(Some),
+        ParamType::Texture => self.world.textures.rgb_reference(p, &params.owner).map(Some),
         _ => unsupported("a blackbody"),
     }
     }
@@ -530,13 +537,13 @@ impl SceneBuilder {
             format!("{prefix}uroughness"),
             format!("{prefix}vroughness"),
         ];
-        let r = self.textures.float(params, &names[0], 0.0)?;
+        let r = self.world.textures.float(params, &names[0], 0.0)?;
         let u = match params.get(&names[1]) {
-            Some(_) => self.textures.float(params, &names[1], 0.0)?,
+            Some(_) => self.world.textures.float(params, &names[1], 0.0)?,
             None => r.clone(),
         };
         let v = match params.get(&names[2]) {
-            Some(_) => self.textures.float(params, &names[2], 0.0)?,
+            Some(_) => self.world.textures.float(params, &names[2], 0.0)?,
             None => r.clone(),
         };
         for (name, value) in names.iter().zip([&r, &u, &v]) {

@@ -5,7 +5,7 @@ use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
     BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MltDesc,
-    RussianRoulette, SamplerKind, SppmDesc,
+    RussianRoulette, SamplerDesc, SamplerKind, SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -16,6 +16,27 @@ use crate::error::{Location, SceneError};
 const MAX_RESOLUTION: i32 = 32_768;
 /// Largest accepted pixel count.
 const MAX_PIXELS: i64 = 1 << 28;
+
+/// What the options block (before `WorldBegin`) sets.
+#[derive(Debug, Default)]
+pub struct SceneOptions {
+    /// `Camera`.
+    pub camera: CameraDesc,
+    /// `Film`'s resolution.
+    pub film: FilmDesc,
+    /// `PixelFilter`.
+    pub filter: FilterDesc,
+    /// `Sampler` (its seed is resolved at the end, see [`Self::sampler_seed`]).
+    pub sampler: SamplerDesc,
+    /// The `Sampler`'s own `seed` parameter, which wins over [`Self::option_seed`].
+    pub sampler_seed: Option<i32>,
+    /// `Option "seed"`.
+    pub option_seed: Option<i32>,
+    /// `Integrator`.
+    pub integrator: IntegratorDesc,
+    /// `Film`'s `filename`.
+    pub output_filename: Option<String>,
+}
 
 impl SceneBuilder {
     /// `Camera "perspective" ...`: the CTM is camera-from-world.
@@ -81,7 +102,7 @@ impl SceneBuilder {
                 });
             }
         }
-        self.camera = CameraDesc {
+        self.options.camera = CameraDesc {
             world_from_camera: Transform {
                 m: world_from_camera.m,
                 m_inv: world_from_camera.m_inv,
@@ -125,11 +146,11 @@ impl SceneBuilder {
                 ));
             }
         }
-        self.film = FilmDesc {
+        self.options.film = FilmDesc {
             width: width as u32,
             height: height as u32,
         };
-        self.output_filename = params.string("filename")?.map(|(name, _)| name);
+        self.options.output_filename = params.string("filename")?.map(|(name, _)| name);
         self.warn_unused(params);
         Ok(())
     }
@@ -149,7 +170,7 @@ impl SceneBuilder {
                         "pixel filter \"{kind}\" is not implemented yet; using \"gaussian\" with its defaults (radius 1.5, sigma 0.5)"
                     ),
                 );
-                self.filter = FilterDesc::default();
+                self.options.filter = FilterDesc::default();
                 self.warn_unused(params);
                 return Ok(());
             }
@@ -159,7 +180,7 @@ impl SceneBuilder {
             positive(params, "xradius", default_radius)?,
             positive(params, "yradius", default_radius)?,
         );
-        self.filter = match kind {
+        self.options.filter = match kind {
             "box" => FilterDesc::Box { radius },
             "triangle" => FilterDesc::Triangle { radius },
             _ => FilterDesc::Gaussian {
@@ -222,12 +243,12 @@ impl SceneBuilder {
             let [seed] = p.ints()[..] else {
                 return Err(SceneError::syntax(&p.loc, "parameter \"integer seed\" needs 1 value"));
             };
-            self.sampler_seed = Some(seed);
+            self.options.sampler_seed = Some(seed);
         } else {
-            self.sampler_seed = None;
+            self.options.sampler_seed = None;
         }
-        self.sampler.kind = sampler_kind;
-        self.sampler.samples_per_pixel = spp as u32;
+        self.options.sampler.kind = sampler_kind;
+        self.options.sampler.samples_per_pixel = spp as u32;
         self.warn_unused(params);
         Ok(())
     }
@@ -301,7 +322,7 @@ impl SceneBuilder {
         } else {
             MltDesc::default()
         };
-        self.integrator = IntegratorDesc {
+        self.options.integrator = IntegratorDesc {
             kind: integrator_kind,
             max_depth: max_depth as u32,
             direct,
@@ -360,7 +381,7 @@ impl SceneBuilder {
                         format!("expected an integer value for Option \"seed\", found \"{value}\""),
                     )
                 })?;
-                self.option_seed = Some(seed);
+                self.options.option_seed = Some(seed);
             }
             "disablepixeljitter"
             | "disabletexturefiltering"

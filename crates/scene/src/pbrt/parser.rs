@@ -64,7 +64,7 @@ impl Parser {
             // the directive's file names against, even if reading the directive's arguments
             // runs off the end of an included file.
             if let Some(input) = self.inputs.last() {
-                self.builder.current_dir.clone_from(&input.dir);
+                self.builder.input.current_dir.clone_from(&input.dir);
             }
             match tok.kind {
                 TokenKind::Word(w) => self.directive(&w, tok.loc)?,
@@ -424,7 +424,7 @@ impl Parser {
             ));
         }
         let path = self.builder.resolve(&name);
-        let bytes = self.builder.files.read(&path).map_err(|e| {
+        let bytes = self.builder.input.files.read(&path).map_err(|e| {
             SceneError::io(
                 loc,
                 format!("cannot open included file \"{name}\": {}", io_error_text(&e)),

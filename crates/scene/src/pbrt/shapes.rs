@@ -63,7 +63,7 @@ impl SceneBuilder {
         };
         // pbrt-v4 `scene.cpp`: a `texture alpha`, else a `float alpha` below 1; opaque
         // shapes get no alpha test at all.
-        let alpha = self.textures.float(params, "alpha", 1.0)?;
+        let alpha = self.world.textures.float(params, "alpha", 1.0)?;
         let alpha = effective_alpha(Some(&alpha));
         for name in ["displacement", "emissionfilename"] {
             if let Some(p) = params.get(name) {

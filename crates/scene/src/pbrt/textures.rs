@@ -236,14 +236,14 @@ impl SceneBuilder {
         params: &ParamSet,
         loc: &Location,
     ) -> Result<(), SceneError> {
-        if let Some((_, first)) = T::table(&self.textures).get(name) {
+        if let Some((_, first)) = T::table(&self.world.textures).get(name) {
             return Err(SceneError::invalid(
                 loc,
                 format!("{} texture \"{name}\" is already defined at {first}", T::TYPE),
             ));
         }
         let one = || T::from_texel(Rgb::WHITE);
-        let t = &self.textures;
+        let t = &self.world.textures;
         let tex: Texture<T> = match class {
             "constant" => t.param(params, "value")?.unwrap_or(Texture::Constant(one())),
             "scale" => {
@@ -290,7 +290,7 @@ impl SceneBuilder {
             }
         };
         self.warn_unused(params);
-        T::table_mut(&mut self.textures).insert(name.to_string(), (tex, loc.clone()));
+        T::table_mut(&mut self.world.textures).insert(name.to_string(), (tex, loc.clone()));
         Ok(())
     }
 
@@ -417,12 +417,12 @@ impl SceneBuilder {
     ) -> Result<Arc<MipMap>, SceneError> {
         let path = self.resolve(filename);
         let key = (path.clone(), format!("{encoding:?}"), wrap as u8);
-        if let Some(m) = self.textures.mipmaps.get(&key) {
+        if let Some(m) = self.world.textures.mipmaps.get(&key) {
             return Ok(m.clone());
         }
         let image = self.read_image_file(filename, loc, encoding, ImageUse::Texture)?;
         let mipmap = Arc::new(MipMap::new(image.width, image.height, &image.pixels, wrap));
-        self.textures.mipmaps.insert(key, mipmap.clone());
+        self.world.textures.mipmaps.insert(key, mipmap.clone());
         Ok(mipmap)
     }
 }
