@@ -25,6 +25,7 @@ use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, T
 
 use crate::error::{io_error_text, Location, SceneError};
 use crate::image_io::{read_image_encoded, ColorEncoding, ImageError};
+use crate::obj::parse_obj;
 use crate::pbrt::LoadedScene;
 
 /// Index of refraction of the coat of a glossy MTL material and of a dielectric without `Ni`.
@@ -41,11 +42,8 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
     let text = std::fs::read(path)
         .map_err(|e| SceneError::io(&loc, format!("cannot open the OBJ file: {}", io_error_text(&e))))?;
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(text), &OPTIONS, |mtl| {
-        let bytes = std::fs::read(dir.join(mtl)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
-        tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(&bytes)))
-    })
-    .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
+    let (models, materials) = parse_obj(&text, &OPTIONS, |mtl| std::fs::read(dir.join(mtl)).ok())
+        .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
     build(&file, dir, &models, materials)
 }
 
@@ -57,33 +55,9 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
 pub fn load_obj_scene_bytes(obj: &[u8], mtl: Option<&[u8]>, file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
     let name: Arc<str> = file.into();
     let loc = Location::file_only(name.clone());
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(obj), &OPTIONS, |_| match mtl {
-        Some(m) => tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(m))),
-        None => Err(tobj::LoadError::OpenFileFailed),
-    })
-    .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
+    let (models, materials) = parse_obj(obj, &OPTIONS, |_| mtl.map(<[u8]>::to_vec))
+        .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
     build(&name, dir, &models, materials)
-}
-
-/// MTL text with colour lines of one value (`Kd 0.5`, valid MTL for a grey) written out
-/// as three: tobj 4.0.5 panics on them (found by the `obj` fuzz target).
-fn sanitize_mtl(mtl: &[u8]) -> Vec<u8> {
-    let text = String::from_utf8_lossy(mtl);
-    let mut out = String::with_capacity(text.len() + 16);
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        let key = words.next();
-        let rest: Vec<&str> = words.collect();
-        match key {
-            Some(k @ ("Ka" | "Kd" | "Ks" | "Ke" | "Tf")) if rest.len() < 3 => {
-                let v = rest.first().copied().unwrap_or("0");
-                out.push_str(&format!("{k} {v} {v} {v}"));
-            }
-            _ => out.push_str(line),
-        }
-        out.push('\n');
-    }
-    out.into_bytes()
 }
 
 /// How OBJ files are read: one index per vertex, polygons fan-triangulated.
