@@ -141,12 +141,23 @@ pub fn obj(data: &[u8]) {
         mtl,
         "fuzz.obj",
         Path::new(NO_DIR),
+        LoadLimits {
+            max_memory: MEMORY_LIMIT,
+        },
     ));
 }
 
 /// A glTF document (JSON or GLB) with embedded buffers and images.
 pub fn gltf(data: &[u8]) {
-    built(crate::gltf::load_gltf_slice(data, "fuzz.gltf", Path::new(NO_DIR)));
+    let limits = LoadLimits {
+        max_memory: MEMORY_LIMIT,
+    };
+    built(crate::gltf::load_gltf_slice(
+        data,
+        "fuzz.gltf",
+        Path::new(NO_DIR),
+        limits,
+    ));
 }
 
 /// Build the render-ready scene of a loaded one, checking every error message.
