@@ -8,6 +8,8 @@ use std::path::Path;
 use mcrender_core::math::{Vec2, Vec3};
 use mcrender_core::scene::TriangleMeshDesc;
 
+use crate::source::FileSource;
+
 /// What tobj makes of an OBJ file: its models, and its materials (or why they could not be
 /// read).
 pub type ParsedObj = (Vec<tobj::Model>, Result<Vec<tobj::Material>, tobj::LoadError>);
@@ -51,22 +53,22 @@ fn sanitize_mtl(mtl: &[u8]) -> Vec<u8> {
     out.into_bytes()
 }
 
-/// Read `path` as one triangle mesh in the file's coordinates (its materials are read, as
-/// tobj does, and ignored).
+/// Read `path` of `files` as one triangle mesh in the file's coordinates (its materials
+/// are read, as tobj does, and ignored).
 ///
 /// # Errors
 /// A message (not naming the file: the caller does) when it cannot be read or parsed, has
 /// no triangles, or has non-finite coordinates.
-pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
+pub fn read_obj_mesh(path: &Path, files: &dyn FileSource) -> Result<TriangleMeshDesc, String> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
         ..tobj::LoadOptions::default()
     };
-    let obj = std::fs::read(path).map_err(|e| crate::error::io_error_text(&e))?;
+    let obj = files.read(path).map_err(|e| crate::error::io_error_text(&e))?;
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
     let (models, _materials) =
-        parse_obj(&obj, &options, |mtl| std::fs::read(dir.join(mtl)).ok()).map_err(|e| e.to_string())?;
+        parse_obj(&obj, &options, |mtl| files.read(&dir.join(mtl)).ok()).map_err(|e| e.to_string())?;
     let meshes: Vec<&tobj::Mesh> = models.iter().map(|m| &m.mesh).collect();
     mesh_of(&meshes)
 }
@@ -131,7 +133,7 @@ mod tests {
              f 1/1/1 2/2/1 3/3/1 4/4/1\n",
         )
         .unwrap();
-        let m = read_obj_mesh(&path).unwrap();
+        let m = read_obj_mesh(&path, &crate::source::DiskFiles).unwrap();
         assert_eq!(m.indices.len(), 6);
         assert_eq!(m.positions.len(), 4);
         assert_eq!(m.normals.as_ref().unwrap()[0], Vec3::Z);
@@ -140,10 +142,10 @@ mod tests {
 
     #[test]
     fn a_missing_file_or_a_bad_index_is_an_error() {
-        assert!(read_obj_mesh(Path::new("/definitely/not/here.obj")).is_err());
+        assert!(read_obj_mesh(Path::new("/definitely/not/here.obj"), &crate::source::DiskFiles).is_err());
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("bad.obj");
         std::fs::write(&path, "v 0 0 0\nf 1 2 3\n").unwrap();
-        assert!(read_obj_mesh(&path).is_err());
+        assert!(read_obj_mesh(&path, &crate::source::DiskFiles).is_err());
     }
 }

@@ -40,7 +40,7 @@ impl Builder {
             SceneError::io(loc, format!("cannot read {what} {}: {why}", quoted(file)))
         };
         let format = ImageFormat::from_path(path).map_err(error)?;
-        let bytes = std::fs::read(path).map_err(|source| {
+        let bytes = self.reader.files().read(path).map_err(|source| {
             error(ImageError::Io {
                 path: path.to_path_buf(),
                 source,
