@@ -2,7 +2,7 @@
 //! render's state; `mcrender render --resume FILE [-o OUT]` continues it, to the same bytes
 //! as a render that was never stopped.
 //!
-//! File layout (version 2), chosen so that a reader needs nothing but this comment:
+//! File layout (version 3), chosen so that a reader needs nothing but this comment:
 //!
 //! ```text
 //! "MCRCKPT\n"                      8 bytes, magic
@@ -24,11 +24,15 @@
 //! and exact (no decimal round trip).
 //!
 //! An integrator with state of its own beyond the film (SPPM's per-pixel radii, photon
-//! counts and flux, and its iteration count) adds one section `integrator.NAME` after the
-//! film, whose bytes only that integrator reads ([`IntegratorState`]; SPPM's layout is
-//! `mcrender_core::integrator::sppm::SppmState::to_bytes`). Its film section then holds
-//! the image so far. A reader refuses sections it does not know, and the fingerprint
-//! already ties a checkpoint to its integrator.
+//! counts and flux, and its iteration count; MLT's normalisation, chains and splat sums)
+//! adds one section `integrator.NAME` after the film, whose bytes only that integrator
+//! reads ([`IntegratorState`]; the layouts are
+//! `mcrender_core::integrator::sppm::SppmState::to_bytes` and
+//! `mcrender_core::integrator::mlt::MltState::to_bytes`). Its film section then holds the
+//! image so far (MLT's splat sums thus appear twice: the state is whole without the film
+//! section), and its sample count is the integrator's, not the sampler's. A reader refuses
+//! sections it does not know, and the fingerprint already ties a checkpoint to its
+//! integrator.
 //!
 //! The fingerprint is a SHA-256 over the binary's version, the scene file's bytes and those
 //! of every file it names (includes, meshes, textures; found as quoted strings naming
@@ -105,11 +109,11 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     Ok(Duration::from_secs_f64(secs))
 }
 
-/// The state of an integrator with its own driver (SPPM; MLT may add its own), saved as the
-/// section `integrator.NAME`: bytes only that integrator reads.
+/// The state of an integrator with its own driver (SPPM, MLT), saved as the section
+/// `integrator.NAME`: bytes only that integrator reads.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct IntegratorState {
-    /// The integrator's name (`sppm`).
+    /// The integrator's name (`sppm`, `mlt`).
     pub name: String,
     /// Its serialised state.
     pub bytes: Vec<u8>,
@@ -574,7 +578,9 @@ pub fn check_fingerprint(path: &Path, ck: &Checkpoint, fingerprint: &str, desc: 
     if (ck.film.width(), ck.film.height()) != (w, h) || ck.samples_per_pixel != desc.sampler.samples_per_pixel {
         bail!("checkpoint \"{}\": its film does not match the scene's", path.display());
     }
-    if ck.film.samples_per_pixel() > u64::from(ck.samples_per_pixel) {
+    // An integrator with its own state counts its own progress (SPPM iterations, MLT
+    // mutations) and checks it itself.
+    if ck.integrator_state.is_none() && ck.film.samples_per_pixel() > u64::from(ck.samples_per_pixel) {
         bail!("checkpoint \"{}\": more samples done than asked for", path.display());
     }
     Ok(())

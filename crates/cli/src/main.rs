@@ -13,6 +13,7 @@ mod convert_cmd;
 mod diff_cmd;
 mod interrupt;
 mod lab;
+mod mlt_render;
 mod pi_cmd;
 mod preflight;
 mod progressive;

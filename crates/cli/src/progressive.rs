@@ -229,7 +229,8 @@ fn add_stats(total: &mut RenderStats, s: &RenderStats) {
 /// The image (and variance) of an unfinished render; EXR files record `meta` in their
 /// header (the samples per pixel done and asked for: `mcrender.samplesPerPixel`,
 /// `mcrender.samplesRequested`; SPPM's iterations: `mcrender.iterations`,
-/// `mcrender.iterationsRequested`).
+/// `mcrender.iterationsRequested`; MLT's mutations: `mcrender.mutations`,
+/// `mcrender.mutationsRequested`).
 pub fn write_partial(film: &Film, output: &Path, variance: Option<&Path>, meta: &[(&str, &str)]) -> Result<()> {
     let (w, h) = (film.width(), film.height());
     let write = |path: &Path, pixels: Vec<mcrender_core::color::Rgb>| -> Result<()> {

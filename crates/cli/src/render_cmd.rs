@@ -7,8 +7,7 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use mcrender_core::integrator::mlt::{self, MltSettings};
-use mcrender_core::render::{RenderOptions, RenderOutput, RenderStats};
+use mcrender_core::render::{RenderOptions, RenderOutput};
 use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_scene::image_io::{write_images, ImageRgb};
 
@@ -87,10 +86,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         return crate::sppm_render::render(args, resume, &scene, &desc, &output);
     }
     if desc.integrator.kind == IntegratorKind::Mlt {
-        if args.checkpointing.checkpoint.is_some() || resume.is_some() {
-            bail!("--checkpoint and --resume are not supported by the mlt integrator (its Markov chains are not checkpointed)");
-        }
-        return render_mlt(&scene, args, &output);
+        return crate::mlt_render::render(args, resume, &scene, &desc, &output);
     }
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
     let out = crate::progressive::render(args, resume, &scene, &desc, &output)?;
@@ -103,48 +99,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         ..Default::default()
     };
     crate::bdpt_visualize::write_if_requested(&desc, &opts, dir, args.quiet)?;
-    Ok(())
-}
-
-/// MLT has its own driver (bootstrap, then Markov chains; not samples per pixel).
-fn render_mlt(scene: &Scene, args: &RenderArgs, output: &Path) -> Result<()> {
-    let settings = MltSettings::from_scene(scene);
-    let total = u64::from(settings.mutations_per_pixel) * u64::from(scene.film.width) * u64::from(scene.film.height);
-    let bar = progress_bar(total, args.quiet);
-    let start = std::time::Instant::now();
-    let cancel = std::sync::atomic::AtomicBool::new(false);
-    let (out, threads) = mlt::render_with_threads(
-        scene,
-        &settings,
-        args.scene.threads,
-        &|done, _| bar.set_position(done),
-        &cancel,
-    )
-    .context("cannot start the render threads")?;
-    bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64().max(1e-9);
-    let (mutations, accepted, b) = (out.mutations, out.accepted, out.b);
-    let render = RenderOutput {
-        film: out.film,
-        stats: RenderStats {
-            elapsed: start.elapsed(),
-            paths: mutations,
-            trace: out.trace,
-            threads,
-            ..Default::default()
-        },
-    };
-    write_outputs(&render, output, args.variance_output.as_deref())?;
-    eprintln!(
-        "{}: {}x{}, MLT {} mutations per pixel ({} chains, b = {b:.4}, {:.1}% accepted) in {secs:.2} s on {threads} threads: {:.2} M mutations/s",
-        output.display(),
-        render.film.width(),
-        render.film.height(),
-        settings.mutations_per_pixel,
-        settings.chains,
-        100.0 * accepted as f64 / mutations.max(1) as f64,
-        mutations as f64 / secs / 1e6,
-    );
     Ok(())
 }
 

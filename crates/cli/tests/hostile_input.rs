@@ -272,3 +272,33 @@ fn max_memory_refuses_a_mitsuba_scene_with_a_big_texture_before_loading_it() {
     );
     no_images(dir.path());
 }
+
+/// `--max-memory` covers an OBJ scene's textures too (its loader reported them as 0
+/// bytes): a 16384x16384 `map_Kd` is refused from its header, before it is decoded or
+/// anything rendered (glTF images: `crates/scene/tests/gltf_loader.rs`).
+#[test]
+fn max_memory_refuses_an_obj_scene_with_a_big_texture_before_loading_it() {
+    let dir = tempfile::tempdir().unwrap();
+    // Only the TGA header: decoding would fail, so a refusal must come from the header.
+    let mut tga = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend([24, 0]);
+    std::fs::write(dir.path().join("big.tga"), tga).unwrap();
+    std::fs::write(dir.path().join("m.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd big.tga\n").unwrap();
+    std::fs::write(
+        dir.path().join("scene.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let err = refused(
+        &["render", "scene.obj", "--max-memory", "1G", "-o", "a.png", "-q"],
+        dir.path(),
+        FAST,
+    );
+    assert!(
+        err.contains("scene.obj") && err.contains("16384x16384") && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    no_images(dir.path());
+}

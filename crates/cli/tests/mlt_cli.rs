@@ -49,14 +49,28 @@ fn renders_a_scene_file_asking_for_mlt() {
     assert!((mean - 1.875).abs() < 0.02 * 1.875, "image mean {mean} vs 1.875");
 }
 
+/// A render with --checkpoint that runs to the end writes the bytes of one without, and
+/// removes its checkpoint (interrupted and resumed MLT renders: `tests/checkpoint.rs`).
 #[test]
-fn checkpointing_is_refused() {
+fn a_checkpointed_render_that_finishes_writes_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("scene.pbrt"), SCENE).unwrap();
+    let plain = render(dir.path(), "2", "plain.exr");
     let o = mcrender(
-        &["render", "scene.pbrt", "-o", "x.exr", "-q", "--checkpoint", "c.ckpt"],
+        &[
+            "render",
+            "scene.pbrt",
+            "-o",
+            "x.exr",
+            "-q",
+            "--checkpoint",
+            "c.ckpt",
+            "--checkpoint-every",
+            "1ms",
+        ],
         dir.path(),
     );
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("mlt"), "{}", stderr(&o));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(dir.path().join("x.exr")).unwrap(), plain);
+    assert!(!dir.path().join("c.ckpt").exists());
 }

@@ -8,6 +8,7 @@
 
 pub mod accel;
 pub mod bsdf;
+pub mod bytes;
 pub mod camera;
 pub mod color;
 pub mod film;

@@ -1,5 +1,6 @@
 //! Metropolis light transport (`integrator::mlt`) against the closed forms of the analytic
-//! scenes, its determinism, cancellation, and its primary sample space mutation.
+//! scenes, its determinism, cancellation, its saved state (checkpoints), and its primary
+//! sample space mutation.
 //!
 //! One MLT render's image mean is an estimate whose error comes from the bootstrap's
 //! normalisation and the chains' correlated samples; renders with different seeds are
@@ -14,7 +15,7 @@ use std::sync::atomic::AtomicBool;
 
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::integrator::mlt::{render_with_threads, MltOutput, MltSettings};
+use mcrender_core::integrator::mlt::{self, render_with_threads, MltOutput, MltSettings, MltState};
 use mcrender_core::math::{Mat4, Transform, Vec3, PI};
 use mcrender_core::sampling::{chi2, MltSampler, SampleSource};
 use mcrender_core::scene::{
@@ -271,6 +272,108 @@ fn one_and_two_threads_give_identical_bytes() {
     );
     assert_eq!(bits(&a), bits(&b));
     assert_eq!(a.film.samples_per_pixel(), u64::from(st.mutations_per_pixel));
+}
+
+/// The scene of [`one_and_two_threads_give_identical_bytes`]: a receiver under a square
+/// light, at 24x20 pixels and depth 3.
+fn lit_receiver() -> Scene {
+    let mut d = empty_scene();
+    add_receiver(&mut d, 0.7);
+    add_square_light(&mut d, 0.8, 1.0, Rgb::splat(3.0));
+    aim_at_receiver(&mut d);
+    d.camera.fov_degrees = 30.0;
+    d.film = mcrender_core::scene::FilmDesc { width: 24, height: 20 };
+    d.integrator.max_depth = 3;
+    Scene::build(&d).unwrap()
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap()
+}
+
+/// A checkpoint's round trip: the state as bytes and back.
+fn saved(state: &MltState, st: &MltSettings) -> MltState {
+    let bytes = state.to_bytes();
+    let back = MltState::from_bytes(&bytes, 24, 20, st).unwrap();
+    assert_eq!(back.to_bytes(), bytes, "the state round-trips exactly");
+    back
+}
+
+/// A render cut into steps of odd sizes, saved and read back between them, stopped by its
+/// cancel flag in the middle of a step, and continued on alternating thread counts, ends
+/// with the film of a render never stopped, bit for bit (splat sums and sample count).
+#[test]
+fn a_render_stopped_saved_and_continued_is_bit_identical() {
+    let scene = lit_receiver();
+    let st = MltSettings {
+        chains: 13, // more chains than run at once, and shares of unequal sizes
+        mutations_per_pixel: 1000,
+        ..settings(&scene, 4)
+    };
+    let whole = mlt(&scene, &st, 2);
+    let never = AtomicBool::new(false);
+    let mut state = saved(&MltState::new(24, 20), &st);
+    // A bootstrap cancelled before it starts leaves the state as it was.
+    let stop = AtomicBool::new(true);
+    mlt::bootstrap(&scene, &st, &mut state, &stop);
+    assert!(!state.is_bootstrapped());
+    pool(1).install(|| mlt::bootstrap(&scene, &st, &mut state, &never));
+    assert_eq!(state.b(), whole.b);
+    let mut state = saved(&state, &st);
+    // Stopped by the flag from another thread while a chain runs (at a point that varies
+    // from run to run).
+    let stop = AtomicBool::new(false);
+    std::thread::scope(|sc| {
+        sc.spawn(|| {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        });
+        pool(2).install(|| mlt::advance(&scene, &st, &mut state, u64::MAX, &|_, _| {}, &stop));
+    });
+    assert!(
+        !state.is_finished(),
+        "stopped before the end ({} mutations)",
+        state.mutations()
+    );
+    let mut state = saved(&state, &st);
+    for (i, budget) in [1u64, 37, 500, 4097, 3].into_iter().cycle().enumerate() {
+        if state.is_finished() {
+            break;
+        }
+        pool(1 + i % 2).install(|| mlt::advance(&scene, &st, &mut state, budget, &|_, _| {}, &never));
+        state = saved(&state, &st);
+    }
+    assert_eq!(state.mutations(), whole.mutations);
+    assert_eq!(state.accepted(), whole.accepted);
+    assert_eq!(state.film(&st), whole.film);
+}
+
+/// A saved state is refused when cut short, extended, or read for another film size or
+/// another number of chains.
+#[test]
+fn a_saved_state_of_another_render_is_refused() {
+    let scene = lit_receiver();
+    let st = settings(&scene, 2);
+    let mut state = MltState::new(24, 20);
+    mlt::bootstrap(&scene, &st, &mut state, &AtomicBool::new(false));
+    mlt::advance(&scene, &st, &mut state, 3000, &|_, _| {}, &AtomicBool::new(false));
+    let bytes = state.to_bytes();
+    assert!(MltState::from_bytes(&bytes, 24, 20, &st).is_ok());
+    for cut in [0, 8, 40, bytes.len() / 2, bytes.len() - 1] {
+        assert!(
+            MltState::from_bytes(&bytes[..cut], 24, 20, &st).is_err(),
+            "cut at {cut}"
+        );
+    }
+    let mut longer = bytes.clone();
+    longer.push(0);
+    assert!(MltState::from_bytes(&longer, 24, 20, &st).is_err());
+    let err = MltState::from_bytes(&bytes, 20, 24, &st).unwrap_err();
+    assert!(err.contains("24x20"), "{err}");
+    let other = MltSettings { chains: 15, ..st };
+    assert!(MltState::from_bytes(&bytes, 24, 20, &other)
+        .unwrap_err()
+        .contains("chains"));
 }
 
 #[test]

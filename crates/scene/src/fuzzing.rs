@@ -27,6 +27,7 @@ pub const TARGETS: &[&str] = &[
     "tga",
     "obj",
     "gltf",
+    "mitsuba",
 ];
 
 /// Run `data` through the target named `target` (one of [`TARGETS`]).
@@ -45,6 +46,7 @@ pub fn run(target: &str, data: &[u8]) {
         "tga" => image(ImageFormat::Tga, data),
         "obj" => obj(data),
         "gltf" => gltf(data),
+        "mitsuba" => mitsuba(data),
         other => panic!("unknown fuzz target {other}"),
     }
 }
@@ -78,9 +80,15 @@ pub fn loader(data: &[u8]) {
 /// The in-memory file set of a [`loader`] input: `fuzz.pbrt` and the named parts.
 #[must_use]
 pub fn split_files(data: &[u8]) -> MemoryFiles {
+    split_files_with_top(data, "fuzz.pbrt")
+}
+
+/// The in-memory file set of an input whose first part is the file `top`.
+#[must_use]
+pub fn split_files_with_top(data: &[u8], top: &str) -> MemoryFiles {
     let mut files = MemoryFiles::new();
     let mut parts = split(data, FILE_MARKER).into_iter();
-    files.insert("fuzz.pbrt", parts.next().unwrap_or_default().to_vec());
+    files.insert(top, parts.next().unwrap_or_default().to_vec());
     for part in parts {
         let (name, bytes) = match part.iter().position(|&b| b == b'\n') {
             Some(i) => (&part[..i], &part[i + 1..]),
@@ -141,12 +149,42 @@ pub fn obj(data: &[u8]) {
         mtl,
         "fuzz.obj",
         Path::new(NO_DIR),
+        LoadLimits {
+            max_memory: MEMORY_LIMIT,
+        },
     ));
 }
 
 /// A glTF document (JSON or GLB) with embedded buffers and images.
 pub fn gltf(data: &[u8]) {
-    built(crate::gltf::load_gltf_slice(data, "fuzz.gltf", Path::new(NO_DIR)));
+    let limits = LoadLimits {
+        max_memory: MEMORY_LIMIT,
+    };
+    built(crate::gltf::load_gltf_slice(
+        data,
+        "fuzz.gltf",
+        Path::new(NO_DIR),
+        limits,
+    ));
+}
+
+/// The name of a [`mitsuba`] input's scene file.
+pub const MITSUBA_SCENE: &str = "fuzz.xml";
+
+/// Load a Mitsuba XML scene with the files it names, all in memory: the input is the XML
+/// text (the file [`MITSUBA_SCENE`]), then any number of `FILE_MARKER NAME\n BYTES` parts
+/// (includes, OBJ, MTL and PLY meshes, images), as for [`loader`].
+pub fn mitsuba(data: &[u8]) {
+    let limits = LoadLimits {
+        max_memory: MEMORY_LIMIT,
+    };
+    let files = Arc::new(split_files_with_top(data, MITSUBA_SCENE));
+    built(crate::mitsuba::load_file_from(
+        Path::new(MITSUBA_SCENE),
+        &[],
+        limits,
+        files,
+    ));
 }
 
 /// Build the render-ready scene of a loaded one, checking every error message.

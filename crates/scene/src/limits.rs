@@ -56,6 +56,27 @@ pub fn mesh_bytes(vertices: u64, triangles: u64) -> u64 {
         .saturating_add(triangles.saturating_mul(12 + 64 + 28))
 }
 
+/// Count `need` more bytes of images, for `what` (e.g. `image "wood.png" (4096x4096)`),
+/// on top of `counted` (the images read so far), unless the total passes the limit: then
+/// the message refusing it, naming both figures and the limit. How the Mitsuba, OBJ and
+/// glTF loaders check each image from its header before decoding it.
+///
+/// # Errors
+/// The refusal, when the total would pass `limits.max_memory`.
+pub fn count_image_bytes(counted: &mut u64, need: u64, what: &str, limits: &LoadLimits) -> Result<(), String> {
+    let total = counted.saturating_add(need);
+    if total > limits.max_memory {
+        return Err(format!(
+            "{what} needs about {} (images so far: {}), over the memory limit of {} (see --max-memory)",
+            format_bytes(need),
+            format_bytes(*counted),
+            format_bytes(limits.max_memory)
+        ));
+    }
+    *counted = total;
+    Ok(())
+}
+
 /// A byte count for messages: `1.5 GiB`, `310.0 MiB`, `12.0 KiB`, `512 bytes`.
 #[must_use]
 pub fn format_bytes(bytes: u64) -> String {

@@ -13,8 +13,8 @@ use crate::pbrt::LoadedScene;
 pub struct LoadOptions {
     /// `name=value` overrides of a Mitsuba scene's `<default>`s (`-D` on the command line).
     pub defines: Vec<(String, String)>,
-    /// Memory limit for images and meshes (the Mitsuba loader counts its images only; the
-    /// command line adds its meshes, film and BVH before rendering).
+    /// Memory limit for images and meshes (the Mitsuba, OBJ and glTF loaders count their
+    /// images only; the command line adds their meshes, film and BVH before rendering).
     pub limits: LoadLimits,
 }
 
@@ -71,7 +71,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Scen
             },
         ),
         SceneFormat::Mitsuba => crate::mitsuba::load_file_with(path, &options.defines, options.limits),
-        SceneFormat::Obj => crate::obj_scene::load_obj_scene(path),
-        SceneFormat::Gltf => crate::gltf::load_gltf(path),
+        SceneFormat::Obj => crate::obj_scene::load_obj_scene(path, options.limits),
+        SceneFormat::Gltf => crate::gltf::load_gltf(path, options.limits),
     }
 }

@@ -8,18 +8,67 @@ use std::path::Path;
 use mcrender_core::math::{Vec2, Vec3};
 use mcrender_core::scene::TriangleMeshDesc;
 
-/// Read `path` as one triangle mesh in the file's coordinates.
+use crate::source::FileSource;
+
+/// What tobj makes of an OBJ file: its models, and its materials (or why they could not be
+/// read).
+pub type ParsedObj = (Vec<tobj::Model>, Result<Vec<tobj::Material>, tobj::LoadError>);
+
+/// Parse OBJ text with tobj, reading each `mtllib` it names through `mtl` (the bytes of that
+/// file, `None` when it cannot be read). The one way into tobj for every loader (the OBJ
+/// front door and Mitsuba's `obj` shape): each MTL file passes through [`sanitize_mtl`]
+/// first.
+///
+/// # Errors
+/// tobj's, when the OBJ text cannot be parsed.
+pub fn parse_obj(
+    obj: &[u8],
+    options: &tobj::LoadOptions,
+    mtl: impl Fn(&Path) -> Option<Vec<u8>>,
+) -> Result<ParsedObj, tobj::LoadError> {
+    tobj::load_obj_buf(&mut std::io::Cursor::new(obj), options, |name| {
+        let bytes = mtl(name).ok_or(tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(&bytes)))
+    })
+}
+
+/// MTL text with colour lines of fewer than three values (`Kd 0.5`, valid MTL for a grey)
+/// written out as three: tobj 4.0.5 panics on them (found by the `obj` fuzz target).
+fn sanitize_mtl(mtl: &[u8]) -> Vec<u8> {
+    let text = String::from_utf8_lossy(mtl);
+    let mut out = String::with_capacity(text.len() + 16);
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        let key = words.next();
+        let rest: Vec<&str> = words.collect();
+        match key {
+            Some(k @ ("Ka" | "Kd" | "Ks" | "Ke" | "Tf")) if rest.len() < 3 => {
+                let v = rest.first().copied().unwrap_or("0");
+                out.push_str(&format!("{k} {v} {v} {v}"));
+            }
+            _ => out.push_str(line),
+        }
+        out.push('\n');
+    }
+    out.into_bytes()
+}
+
+/// Read `path` of `files` as one triangle mesh in the file's coordinates (its materials
+/// are read, as tobj does, and ignored).
 ///
 /// # Errors
 /// A message (not naming the file: the caller does) when it cannot be read or parsed, has
 /// no triangles, or has non-finite coordinates.
-pub fn read_obj_mesh(path: &Path) -> Result<TriangleMeshDesc, String> {
+pub fn read_obj_mesh(path: &Path, files: &dyn FileSource) -> Result<TriangleMeshDesc, String> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
         ..tobj::LoadOptions::default()
     };
-    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| e.to_string())?;
+    let obj = files.read(path).map_err(|e| crate::error::io_error_text(&e))?;
+    let dir = path.parent().unwrap_or_else(|| Path::new(""));
+    let (models, _materials) =
+        parse_obj(&obj, &options, |mtl| files.read(&dir.join(mtl)).ok()).map_err(|e| e.to_string())?;
     let meshes: Vec<&tobj::Mesh> = models.iter().map(|m| &m.mesh).collect();
     mesh_of(&meshes)
 }
@@ -84,7 +133,7 @@ mod tests {
              f 1/1/1 2/2/1 3/3/1 4/4/1\n",
         )
         .unwrap();
-        let m = read_obj_mesh(&path).unwrap();
+        let m = read_obj_mesh(&path, &crate::source::DiskFiles).unwrap();
         assert_eq!(m.indices.len(), 6);
         assert_eq!(m.positions.len(), 4);
         assert_eq!(m.normals.as_ref().unwrap()[0], Vec3::Z);
@@ -93,10 +142,10 @@ mod tests {
 
     #[test]
     fn a_missing_file_or_a_bad_index_is_an_error() {
-        assert!(read_obj_mesh(Path::new("/definitely/not/here.obj")).is_err());
+        assert!(read_obj_mesh(Path::new("/definitely/not/here.obj"), &crate::source::DiskFiles).is_err());
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("bad.obj");
         std::fs::write(&path, "v 0 0 0\nf 1 2 3\n").unwrap();
-        assert!(read_obj_mesh(&path).is_err());
+        assert!(read_obj_mesh(&path, &crate::source::DiskFiles).is_err());
     }
 }

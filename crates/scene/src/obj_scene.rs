@@ -23,8 +23,10 @@ use mcrender_core::color::Rgb;
 use mcrender_core::scene::{AreaLightDesc, GeometryDesc, MaterialDesc, MaterialId, RgbTexture, ShapeDesc};
 use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
 
-use crate::error::{io_error_text, Location, SceneError};
-use crate::image_io::{read_image_encoded, ColorEncoding, ImageError};
+use crate::error::{io_error_text, quoted, Location, SceneError};
+use crate::image_io::{decode_image, image_dimensions, ColorEncoding, ImageError, ImageFormat};
+use crate::limits::{count_image_bytes, image_texture_bytes, LoadLimits};
+use crate::obj::parse_obj;
 use crate::pbrt::LoadedScene;
 
 /// Index of refraction of the coat of a glossy MTL material and of a dielectric without `Ni`.
@@ -34,19 +36,17 @@ const DEFAULT_IOR: f32 = 1.5;
 ///
 /// # Errors
 /// When the OBJ file cannot be read or parsed, has no faces or bad indices, or a texture
-/// it names cannot be read; the message names the file.
-pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
+/// it names cannot be read or would pass `limits` (checked from its header, before
+/// decoding); the message names the file.
+pub fn load_obj_scene(path: &Path, limits: LoadLimits) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = path.display().to_string().into();
     let loc = Location::file_only(file.clone());
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
     let text = std::fs::read(path)
         .map_err(|e| SceneError::io(&loc, format!("cannot open the OBJ file: {}", io_error_text(&e))))?;
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(text), &OPTIONS, |mtl| {
-        let bytes = std::fs::read(dir.join(mtl)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
-        tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(&bytes)))
-    })
-    .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
-    build(&file, dir, &models, materials)
+    let (models, materials) = parse_obj(&text, &OPTIONS, |mtl| std::fs::read(dir.join(mtl)).ok())
+        .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
+    build(&file, dir, &models, materials, limits)
 }
 
 /// [`load_obj_scene`] on OBJ text in memory, named `file`, whose `mtllib` reads `mtl`
@@ -54,36 +54,18 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
 ///
 /// # Errors
 /// As [`load_obj_scene`].
-pub fn load_obj_scene_bytes(obj: &[u8], mtl: Option<&[u8]>, file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
+pub fn load_obj_scene_bytes(
+    obj: &[u8],
+    mtl: Option<&[u8]>,
+    file: &str,
+    dir: &Path,
+    limits: LoadLimits,
+) -> Result<LoadedScene, SceneError> {
     let name: Arc<str> = file.into();
     let loc = Location::file_only(name.clone());
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(obj), &OPTIONS, |_| match mtl {
-        Some(m) => tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(m))),
-        None => Err(tobj::LoadError::OpenFileFailed),
-    })
-    .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
-    build(&name, dir, &models, materials)
-}
-
-/// MTL text with colour lines of one value (`Kd 0.5`, valid MTL for a grey) written out
-/// as three: tobj 4.0.5 panics on them (found by the `obj` fuzz target).
-fn sanitize_mtl(mtl: &[u8]) -> Vec<u8> {
-    let text = String::from_utf8_lossy(mtl);
-    let mut out = String::with_capacity(text.len() + 16);
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        let key = words.next();
-        let rest: Vec<&str> = words.collect();
-        match key {
-            Some(k @ ("Ka" | "Kd" | "Ks" | "Ke" | "Tf")) if rest.len() < 3 => {
-                let v = rest.first().copied().unwrap_or("0");
-                out.push_str(&format!("{k} {v} {v} {v}"));
-            }
-            _ => out.push_str(line),
-        }
-        out.push('\n');
-    }
-    out.into_bytes()
+    let (models, materials) = parse_obj(obj, &OPTIONS, |_| mtl.map(<[u8]>::to_vec))
+        .map_err(|e| SceneError::syntax(&loc, format!("cannot parse the OBJ file: {e}")))?;
+    build(&name, dir, &models, materials, limits)
 }
 
 /// How OBJ files are read: one index per vertex, polygons fan-triangulated.
@@ -99,6 +81,7 @@ fn build(
     dir: &Path,
     models: &[tobj::Model],
     materials: Result<Vec<tobj::Material>, tobj::LoadError>,
+    limits: LoadLimits,
 ) -> Result<LoadedScene, SceneError> {
     let loc = Location::file_only(file.clone());
     let mut warnings = Vec::new();
@@ -116,6 +99,8 @@ fn build(
         dir: dir.to_path_buf(),
         images: HashMap::new(),
         ids: HashMap::new(),
+        limits,
+        image_bytes: 0,
     };
     for model in models {
         if model.mesh.indices.is_empty() {
@@ -141,7 +126,7 @@ fn build(
         description: desc,
         output_filename: None,
         warnings,
-        image_bytes: 0,
+        image_bytes: converter.image_bytes,
     })
 }
 
@@ -151,6 +136,10 @@ struct Converter {
     dir: PathBuf,
     images: HashMap<PathBuf, RgbTexture>,
     ids: HashMap<Option<usize>, (MaterialId, Option<AreaLightDesc>)>,
+    /// The memory limit of the load.
+    limits: LoadLimits,
+    /// Estimated bytes of the textures read so far.
+    image_bytes: u64,
 }
 
 fn rgb(c: Option<[f32; 3]>) -> Option<Rgb> {
@@ -287,16 +276,27 @@ impl Converter {
         if let Some(t) = self.images.get(&path) {
             return Ok(t.clone());
         }
-        let img = read_image_encoded(&path, ColorEncoding::Srgb).map_err(|err| {
+        let loc = Location::file_only(self.file.clone());
+        let error = |err: ImageError| {
             let why = match &err {
                 ImageError::Io { source, .. } => io_error_text(source),
                 other => other.to_string(),
             };
-            SceneError::io(
-                &Location::file_only(self.file.clone()),
-                format!("cannot read texture {}: {why}", path.display()),
-            )
+            SceneError::io(&loc, format!("cannot read texture {}: {why}", path.display()))
+        };
+        let format = ImageFormat::from_path(&path).map_err(error)?;
+        let bytes = std::fs::read(&path).map_err(|source| {
+            error(ImageError::Io {
+                path: path.clone(),
+                source,
+            })
         })?;
+        // Refused from the header when decoding would pass the memory limit.
+        let (w, h) = image_dimensions(&path, format, &bytes).map_err(error)?;
+        let what = format!("texture {} ({w}x{h})", quoted(&path.display().to_string()));
+        count_image_bytes(&mut self.image_bytes, image_texture_bytes(w, h), &what, &self.limits)
+            .map_err(|m| SceneError::invalid(&loc, m))?;
+        let img = decode_image(&path, format, &bytes, ColorEncoding::Srgb).map_err(error)?;
         let t = Texture::Bitmap(Arc::new(BitmapTexture {
             mapping: TextureMapping::Uv {
                 su: 1.0,

@@ -52,7 +52,15 @@ pub enum PlyError {
 /// [`PlyError::Io`] when the file cannot be read, [`PlyError::Format`] when it is not a
 /// valid PLY triangle/quad mesh.
 pub fn read_ply(path: &Path) -> Result<PlyMesh, PlyError> {
-    let bytes = std::fs::read(path)?;
+    read_ply_from(path, &crate::source::DiskFiles)
+}
+
+/// [`read_ply`] of the file `path` of `files`.
+///
+/// # Errors
+/// As [`read_ply`].
+pub fn read_ply_from(path: &Path, files: &dyn crate::source::FileSource) -> Result<PlyMesh, PlyError> {
+    let bytes = files.read(path)?;
     read_ply_bytes(&bytes)
 }
 

@@ -82,3 +82,40 @@ fn loader_seeds_load_so_the_fuzzer_starts_from_working_scenes() {
         assert!(!scene.description.shapes.is_empty());
     }
 }
+
+/// The Mitsuba seeds (scenes of Mitsuba's test suite, their meshes and images bundled, big
+/// ones swapped for small files of the same format; and one of includes, refs, OBJ with
+/// MTL, PLY and a bitmap) are read from memory; those mcrender supports load, so the
+/// fuzzer starts from working scenes. Prints which do not, and why.
+#[test]
+fn mitsuba_seeds_load_from_memory() {
+    use std::sync::Arc;
+
+    use mcrender_scene::fuzzing::{split_files_with_top, MITSUBA_SCENE};
+    use mcrender_scene::limits::LoadLimits;
+    let mut loaded = 0;
+    let seeds = files(&fuzz_dir().join("seeds/mitsuba"));
+    for path in &seeds {
+        let files = Arc::new(split_files_with_top(&std::fs::read(path).unwrap(), MITSUBA_SCENE));
+        match mcrender_scene::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files) {
+            Ok(scene) => {
+                let d = &scene.description;
+                assert!(!(d.shapes.is_empty() && d.instances.is_empty()), "{}", path.display());
+                loaded += 1;
+            }
+            Err(e) => println!("{}: not loaded: {e}", path.display()),
+        }
+    }
+    println!("{loaded} of {} Mitsuba seeds load", seeds.len());
+    assert!(
+        loaded * 2 > seeds.len(),
+        "{loaded} of {} Mitsuba seeds load",
+        seeds.len()
+    );
+    let own = fuzz_dir().join("seeds/mitsuba/include-ref-obj-ply-bitmap");
+    let files = Arc::new(split_files_with_top(&std::fs::read(own).unwrap(), MITSUBA_SCENE));
+    let scene = mcrender_scene::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.description.shapes.len(), 4);
+    assert!(scene.image_bytes > 0, "the bitmap was read from memory");
+}

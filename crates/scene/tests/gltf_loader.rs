@@ -473,3 +473,67 @@ fn the_fuzz_seeds_are_valid_scenes() {
         mcrender_core::scene::Scene::build(&s.description).unwrap();
     }
 }
+
+/// The CRC-32 of PNG chunks (ISO 3309, reflected polynomial 0xedb88320).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 { 0xedb8_8320 ^ (c >> 1) } else { c >> 1 };
+        }
+    }
+    !c
+}
+
+/// The start of a PNG of `n` x `n` RGB pixels: its header and a two-byte image data chunk,
+/// enough to read the size from, far too little to decode.
+fn png_header(n: u32) -> Vec<u8> {
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut chunk = |kind: &[u8], data: &[u8]| {
+        out.extend((data.len() as u32).to_be_bytes());
+        let body = [kind, data].concat();
+        out.extend(&body);
+        out.extend(crc32(&body).to_be_bytes());
+    };
+    let ihdr = [&n.to_be_bytes()[..], &n.to_be_bytes(), &[8, 2, 0, 0, 0]].concat();
+    chunk(b"IHDR", &ihdr);
+    chunk(b"IDAT", &[0x78, 0x9c]);
+    out
+}
+
+/// Regression: glTF images were decoded without a look at the memory limit and reported as
+/// 0 bytes to the command line's memory check. A 16384x16384 base colour texture is now
+/// refused from its header (the file holds only that: decoding would fail otherwise), with
+/// the figure and the limit; a small one is counted.
+#[test]
+fn gltf_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
+    use mcrender_scene::limits::{image_texture_bytes, LoadLimits};
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("big.png"), png_header(16384)).unwrap();
+    write_png(dir.path(), "small.png", &[[255, 0, 0], [0, 255, 0]]);
+    let mut doc = triangle_doc(Some("tri.bin"));
+    doc["images"] = json!([{"uri": "big.png"}]);
+    doc["textures"] = json!([{"source": 0}]);
+    doc["materials"] = json!([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]);
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let path = write(dir.path(), &doc);
+    let options = mcrender_scene::LoadOptions {
+        limits: LoadLimits { max_memory: 1 << 30 },
+        ..mcrender_scene::LoadOptions::default()
+    };
+    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    assert!(
+        err.contains("images[0], 16384x16384") && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    // Without the limit it is read, and fails as the truncated file it is.
+    let err = load(&path).unwrap_err().to_string();
+    assert!(err.contains("cannot read the image"), "{err}");
+
+    doc["images"] = json!([{"uri": "small.png"}]);
+    let path = write(dir.path(), &doc);
+    let loaded = mcrender_scene::load_with(&path, &options).unwrap();
+    assert_eq!(loaded.image_bytes, image_texture_bytes(2, 1));
+}

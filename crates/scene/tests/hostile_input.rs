@@ -160,3 +160,50 @@ fn mitsuba_texture_8192_is_refused_before_decoding() {
     let err = mcrender_scene::load(&path).unwrap_err().to_string();
     assert!(err.contains("cannot read image \"big.tga\""), "{err}");
 }
+
+/// An OBJ scene whose material `m` has the diffuse texture `image`.
+fn write_obj_scene(dir: &Path, image: &str) -> std::path::PathBuf {
+    std::fs::write(dir.join("m.mtl"), format!("newmtl m\nKd 1 1 1\nmap_Kd {image}\n")).unwrap();
+    let path = dir.join("scene.obj");
+    std::fs::write(
+        &path,
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    path
+}
+
+/// Regression: OBJ textures (`map_Kd`) were decoded without a look at the memory limit and
+/// reported as 0 bytes to the command line's memory check. A 16384x16384 one is now
+/// refused from its header (the file holds only that), with the figure and the limit; a
+/// small one is counted.
+#[test]
+fn obj_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut header = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    header.extend(16384u16.to_le_bytes());
+    header.extend(16384u16.to_le_bytes());
+    header.extend([24, 0]);
+    std::fs::write(dir.path().join("big.tga"), header).unwrap();
+    let path = write_obj_scene(dir.path(), "big.tga");
+    let options = mcrender_scene::LoadOptions {
+        limits: LoadLimits { max_memory: 1 << 30 },
+        ..mcrender_scene::LoadOptions::default()
+    };
+    let start = Instant::now();
+    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    assert!(
+        err.contains("big.tga\" (16384x16384)") && err.contains("memory limit of 1.0 GiB"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(start.elapsed() < Duration::from_secs(5), "{:?}", start.elapsed());
+    // Without the limit it is read, and fails as the truncated file it is (not an abort).
+    let err = mcrender_scene::load(&path).unwrap_err().to_string();
+    assert!(err.contains("cannot read texture"), "{err}");
+
+    write_tga(&dir.path().join("small.tga"), 16);
+    let path = write_obj_scene(dir.path(), "small.tga");
+    let loaded = mcrender_scene::load_with(&path, &options).unwrap();
+    assert_eq!(loaded.image_bytes, mcrender_scene::limits::image_texture_bytes(16, 16));
+}

@@ -238,3 +238,26 @@ fn messages_are_one_short_line_without_control_characters() {
         }
     }
 }
+
+/// Regression: an `obj` shape whose `mtllib` has a one-value colour (`Ks 0.5`, valid MTL)
+/// panicked inside tobj 4.0.5 through the Mitsuba loader (the OBJ front door already
+/// rewrote such lines; both now go through `obj::parse_obj`).
+#[test]
+fn mitsuba_obj_with_a_one_value_mtl_colour_does_not_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "m.obj",
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glossy\nf 1 2 3\n",
+    );
+    for mtl in ["newmtl glossy\nKs 0.5\n", "newmtl glossy\nKd\nKa 1\nTf 0.2 0.3\n"] {
+        write(dir.path(), "m.mtl", mtl);
+        let main = write(
+            dir.path(),
+            "main.xml",
+            &scene(r#"<shape type="obj"><string name="filename" value="m.obj"/></shape>"#),
+        );
+        let l = load(&main).unwrap_or_else(|e| panic!("{mtl:?}: {e}"));
+        assert_eq!(l.description.shapes.len(), 1, "{mtl:?}");
+    }
+}

@@ -16,6 +16,7 @@
 //! that the number of values one part of the path uses does not shift the others.
 
 use super::{Pcg32, SampleSource};
+use crate::bytes::{ByteReader, ByteWriter};
 use crate::math::Vec2;
 
 /// One dimension of the state.
@@ -62,6 +63,86 @@ impl MltSampler {
             stream: 0,
             sample_index: 0,
         }
+    }
+
+    /// Save the chain's whole state (generator, iteration counters, every dimension with
+    /// its backup) to `w`, for [`Self::read`]; sigma, the large step probability and the
+    /// stream count are settings, not saved.
+    pub fn write(&self, w: &mut ByteWriter) {
+        self.rng.write(w);
+        w.u64(self.iteration);
+        w.u8(u8::from(self.large_step));
+        w.u64(self.last_large_step);
+        w.u64(self.stream as u64);
+        w.u64(self.sample_index as u64);
+        w.u64(self.x.len() as u64);
+        for xi in &self.x {
+            w.f32(xi.value);
+            w.u64(xi.last_modified);
+            w.f32(xi.value_backup);
+            w.u64(xi.modify_backup);
+        }
+    }
+
+    /// The state [`Self::write`] saved, with these settings: it continues exactly as the
+    /// saved one would have.
+    ///
+    /// # Errors
+    /// When the bytes run out or do not describe a state (a change after the current
+    /// iteration, a stream out of range).
+    pub fn read(
+        r: &mut ByteReader<'_>,
+        sigma: f32,
+        large_step_probability: f32,
+        stream_count: usize,
+    ) -> Result<Self, String> {
+        /// Bytes per dimension.
+        const DIMENSION_BYTES: u64 = 24;
+        let rng = Pcg32::read(r)?;
+        let iteration = r.u64()?;
+        let large_step = match r.u8()? {
+            0 => false,
+            1 => true,
+            v => return Err(format!("a large-step flag of {v}")),
+        };
+        let last_large_step = r.u64()?;
+        let stream = r.u64()?;
+        let sample_index = r.u64()?;
+        let n = r.u64()?;
+        let stream_count = stream_count.max(1);
+        if stream >= stream_count as u64 || sample_index > u64::from(u32::MAX) {
+            return Err(format!(
+                "stream {stream}, sample {sample_index} of a {stream_count}-stream sampler"
+            ));
+        }
+        if n.checked_mul(DIMENSION_BYTES).is_none_or(|b| b > r.remaining() as u64) {
+            return Err(format!("{n} dimensions in {} bytes", r.remaining()));
+        }
+        let mut x = Vec::with_capacity(n as usize);
+        for _ in 0..n {
+            x.push(PrimarySample {
+                value: r.f32()?,
+                last_modified: r.u64()?,
+                value_backup: r.f32()?,
+                modify_backup: r.u64()?,
+            });
+        }
+        let after = |t: u64| t > iteration;
+        if after(last_large_step) || x.iter().any(|xi| after(xi.last_modified) || after(xi.modify_backup)) {
+            return Err(format!("a change after the current iteration {iteration}"));
+        }
+        Ok(Self {
+            rng,
+            sigma,
+            large_step_probability,
+            stream_count,
+            x,
+            iteration,
+            large_step,
+            last_large_step,
+            stream: stream as usize,
+            sample_index: sample_index as usize,
+        })
     }
 
     /// Begin a proposal: a large step with probability `large_step_probability`.
@@ -205,6 +286,36 @@ mod tests {
             (0..8).map(|_| s.get_1d()).collect::<Vec<_>>()
         };
         assert_eq!(draw(), draw());
+    }
+
+    #[test]
+    fn a_saved_state_continues_exactly_and_bad_states_are_refused() {
+        let mut s = MltSampler::new(4, 9, 0.05, 0.3, 3);
+        let draw = |s: &mut MltSampler, k: usize| {
+            let mut v = Vec::new();
+            for i in 0..k {
+                s.start_iteration();
+                s.start_stream(i % 3);
+                v.extend((0..5).map(|_| s.get_1d()));
+                if i % 2 == 0 {
+                    s.accept();
+                } else {
+                    s.reject();
+                }
+            }
+            v
+        };
+        draw(&mut s, 11); // ends on stream 1
+        let mut w = ByteWriter::new();
+        s.write(&mut w);
+        let bytes = w.into_bytes();
+        let mut r = ByteReader::new(&bytes);
+        let mut back = MltSampler::read(&mut r, 0.05, 0.3, 3).unwrap();
+        r.finish().unwrap();
+        assert_eq!(draw(&mut back, 20), draw(&mut s, 20));
+        // Cut short, or a stream the sampler does not have.
+        assert!(MltSampler::read(&mut ByteReader::new(&bytes[..bytes.len() - 1]), 0.05, 0.3, 3).is_err());
+        assert!(MltSampler::read(&mut ByteReader::new(&bytes), 0.05, 0.3, 1).is_err());
     }
 
     #[test]

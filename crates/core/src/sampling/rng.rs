@@ -3,6 +3,8 @@
 //! linear congruential state with the XSH-RR output permutation giving 32-bit numbers, and
 //! 2^63 selectable streams.
 
+use crate::bytes::{ByteReader, ByteWriter};
+
 /// LCG multiplier of PCG32.
 const MULT: u64 = 0x5851_f42d_4c95_7f2d;
 /// Default state of the reference implementation (`PCG32_INITIALIZER`).
@@ -49,6 +51,24 @@ impl Pcg32 {
         self.step();
         self.state = self.state.wrapping_add(seed);
         self.step();
+    }
+
+    /// Save the generator (state and stream) to `w`, for [`Self::read`].
+    pub fn write(&self, w: &mut ByteWriter) {
+        w.u64(self.state);
+        w.u64(self.inc);
+    }
+
+    /// The generator [`Self::write`] saved.
+    ///
+    /// # Errors
+    /// When the bytes run out or the stream selector is even (no generator has one).
+    pub fn read(r: &mut ByteReader<'_>) -> Result<Self, String> {
+        let (state, inc) = (r.u64()?, r.u64()?);
+        if inc & 1 == 0 {
+            return Err("a random generator with an even stream selector".into());
+        }
+        Ok(Self { state, inc })
     }
 
     /// One LCG step: `state = state * MULT + inc (mod 2^64)`.

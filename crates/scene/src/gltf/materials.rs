@@ -6,8 +6,10 @@
 //! with `KHR_materials_ior` as a dielectric of that index and roughness. Textures are
 //! bilinear, wrapped as the sampler's `wrapS`, and honour `KHR_texture_transform` without
 //! rotation. Ignored, with a warning: normal and occlusion textures, a second texture
-//! coordinate set, alpha blending and masking.
+//! coordinate set, alpha blending and masking. Each image is sized from its header and
+//! counted against the load's memory limit before it is decoded.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
@@ -18,6 +20,7 @@ use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc, MaterialId
 use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
 
 use super::data::{error_text, Buffers};
+use crate::limits::{count_image_bytes, image_texture_bytes, LoadLimits};
 
 /// A converted material: its index and the emission of the shapes that use it.
 #[derive(Clone, Copy, Debug)]
@@ -41,6 +44,9 @@ pub struct Materials<'a> {
     dir: &'a Path,
     images: HashMap<usize, Arc<Image>>,
     done: HashMap<Option<usize>, Converted>,
+    limits: LoadLimits,
+    /// Estimated bytes of the images read so far (`crate::limits` estimates).
+    pub image_bytes: u64,
 }
 
 /// The sRGB transfer curve, decoded (IEC 61966-2-1).
@@ -53,14 +59,17 @@ fn srgb_to_linear(v: f32) -> f32 {
 }
 
 impl<'a> Materials<'a> {
-    /// A converter reading images from `buffers` and files in `dir`.
+    /// A converter reading images from `buffers` and files in `dir`, each refused from its
+    /// header when decoding it would pass `limits`.
     #[must_use]
-    pub fn new(buffers: &'a Buffers, dir: &'a Path) -> Self {
+    pub fn new(buffers: &'a Buffers, dir: &'a Path, limits: LoadLimits) -> Self {
         Self {
             buffers,
             dir,
             images: HashMap::new(),
             done: HashMap::new(),
+            limits,
+            image_bytes: 0,
         }
     }
 
@@ -218,11 +227,33 @@ impl<'a> Materials<'a> {
             return Ok(img.clone());
         }
         let ipath = format!("images[{}]", source.index());
-        if let gltf::image::Source::View { view, .. } = source.source() {
-            self.buffers.view(&view)?;
+        let read_error = |e: gltf::Error| format!("{path} ({ipath}): cannot read the image: {}", error_text(&e));
+        // The encoded image, to size it from its header before decoding.
+        let encoded = match source.source() {
+            gltf::image::Source::View { view, .. } => Cow::Borrowed(self.buffers.view(&view)?),
+            gltf::image::Source::Uri { uri, .. } => Cow::Owned(
+                gltf::buffer::Data::from_source_and_blob(gltf::buffer::Source::Uri(uri), Some(self.dir), &mut None)
+                    .map_err(read_error)?
+                    .0,
+            ),
+        };
+        let size = image::ImageReader::new(std::io::Cursor::new(&*encoded))
+            .with_guessed_format()
+            .ok()
+            .and_then(|r| r.into_dimensions().ok());
+        // An image whose size cannot be read fails to decode below.
+        if let Some((w, h)) = size {
+            let need = image_texture_bytes(u64::from(w), u64::from(h));
+            count_image_bytes(
+                &mut self.image_bytes,
+                need,
+                &format!("{path} ({ipath}, {w}x{h})"),
+                &self.limits,
+            )?;
         }
-        let data = gltf::image::Data::from_source(source.source(), Some(self.dir), &self.buffers.0)
-            .map_err(|e| format!("{path} ({ipath}): cannot read the image: {}", error_text(&e)))?;
+        drop(encoded);
+        let data =
+            gltf::image::Data::from_source(source.source(), Some(self.dir), &self.buffers.0).map_err(read_error)?;
         let img = Arc::new(decode(&data).ok_or_else(|| format!("{ipath}: unexpected pixel data"))?);
         self.images.insert(source.index(), img.clone());
         Ok(img)

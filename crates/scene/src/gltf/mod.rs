@@ -26,6 +26,7 @@ use mcrender_core::math::{Mat3, Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{CameraDesc, FilmDesc, GeometryDesc, SceneDescription, ShapeDesc, TriangleMeshDesc};
 
 use crate::error::{io_error_text, Location, SceneError};
+use crate::limits::LoadLimits;
 use crate::pbrt::LoadedScene;
 use data::Buffers;
 use materials::Materials;
@@ -47,8 +48,8 @@ const MAX_NODE_VISITS: usize = 1 << 20;
 ///
 /// # Errors
 /// When the file cannot be read or is malformed, or a buffer or image it names cannot be
-/// read; the display reads `file: json.path: message` (or `file:line:col:` for bad JSON).
-pub fn load_gltf(path: &Path) -> Result<LoadedScene, SceneError> {
+/// read or (sized from its header) would pass `limits`; the display reads `file: json.path: message` (or `file:line:col:` for bad JSON).
+pub fn load_gltf(path: &Path, limits: LoadLimits) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = path.display().to_string().into();
     let bytes = std::fs::read(path).map_err(|e| {
         SceneError::io(
@@ -56,7 +57,7 @@ pub fn load_gltf(path: &Path) -> Result<LoadedScene, SceneError> {
             format!("cannot open the glTF file: {}", io_error_text(&e)),
         )
     })?;
-    load_gltf_slice(&bytes, &file, path.parent().unwrap_or_else(|| Path::new("")))
+    load_gltf_slice(&bytes, &file, path.parent().unwrap_or_else(|| Path::new("")), limits)
 }
 
 /// Load a glTF document from `bytes` (JSON or GLB), named `file` in messages, resolving
@@ -64,7 +65,7 @@ pub fn load_gltf(path: &Path) -> Result<LoadedScene, SceneError> {
 ///
 /// # Errors
 /// As [`load_gltf`].
-pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
+pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path, limits: LoadLimits) -> Result<LoadedScene, SceneError> {
     let file: Arc<str> = file.into();
     let loc = Location::file_only(file.clone());
     // gltf 1.4.1 subtracts 12 from a GLB's declared length unchecked (a panic where
@@ -116,7 +117,7 @@ pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedSce
         .ok_or_else(|| SceneError::invalid(&loc, "scenes: the file has no scene"))?;
     let mut walk = Walk {
         buffers: &buffers,
-        materials: Materials::new(&buffers, dir),
+        materials: Materials::new(&buffers, dir, limits),
         desc: crate::framing::model_scene(),
         camera: None,
         warnings: Vec::new(),
@@ -130,6 +131,7 @@ pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedSce
         mut desc,
         camera,
         warnings: walk_warnings,
+        materials,
         ..
     } = walk;
     warnings.extend(walk_warnings);
@@ -147,7 +149,7 @@ pub fn load_gltf_slice(bytes: &[u8], file: &str, dir: &Path) -> Result<LoadedSce
         description: desc,
         output_filename: None,
         warnings,
-        image_bytes: 0,
+        image_bytes: materials.image_bytes,
     })
 }
 

@@ -6,7 +6,7 @@
 
 use crate::error::{io_error_text, quoted, Location, SceneError};
 use crate::image_io::{decode_image, image_dimensions, ColorEncoding, ImageError, ImageFormat, ImageRgb};
-use crate::limits::{env_image_bytes, format_bytes, image_texture_bytes};
+use crate::limits::{count_image_bytes, env_image_bytes, image_texture_bytes};
 
 use super::builder::Builder;
 
@@ -40,7 +40,7 @@ impl Builder {
             SceneError::io(loc, format!("cannot read {what} {}: {why}", quoted(file)))
         };
         let format = ImageFormat::from_path(path).map_err(error)?;
-        let bytes = std::fs::read(path).map_err(|source| {
+        let bytes = self.reader.files().read(path).map_err(|source| {
             error(ImageError::Io {
                 path: path.to_path_buf(),
                 source,
@@ -51,20 +51,13 @@ impl Builder {
             ImageUse::Texture => image_texture_bytes(w, h),
             ImageUse::Environment => env_image_bytes(w, h),
         };
-        let total = self.image_bytes.saturating_add(need);
-        if total > self.limits.max_memory {
-            return Err(SceneError::invalid(
-                loc,
-                format!(
-                    "{what} {} ({w}x{h}) needs about {} (images so far: {}), over the memory limit of {} (see --max-memory)",
-                    quoted(file),
-                    format_bytes(need),
-                    format_bytes(self.image_bytes),
-                    format_bytes(self.limits.max_memory)
-                ),
-            ));
-        }
-        self.image_bytes = total;
+        count_image_bytes(
+            &mut self.image_bytes,
+            need,
+            &format!("{what} {} ({w}x{h})", quoted(file)),
+            &self.limits,
+        )
+        .map_err(|m| SceneError::invalid(loc, m))?;
         decode_image(path, format, &bytes, encoding).map_err(error)
     }
 }

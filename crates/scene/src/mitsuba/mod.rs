@@ -27,10 +27,12 @@ mod textures;
 mod xml;
 
 use std::path::Path;
+use std::sync::Arc;
 
 use crate::error::SceneError;
 use crate::limits::LoadLimits;
 use crate::pbrt::LoadedScene;
+use crate::source::{DiskFiles, FileSource};
 
 /// Load a Mitsuba XML scene; `defines` are `(name, value)` pairs that override the scene's
 /// `<default>`s.
@@ -54,7 +56,21 @@ pub fn load_file_with(
     defines: &[(String, String)],
     limits: LoadLimits,
 ) -> Result<LoadedScene, SceneError> {
-    let mut reader = xml::Reader::new(defines);
+    load_file_from(path, defines, limits, Arc::new(DiskFiles))
+}
+
+/// [`load_file_with`] reading the scene and every file it names (includes, meshes,
+/// images) from `files` (e.g. [`MemoryFiles`](crate::source::MemoryFiles), for fuzzing).
+///
+/// # Errors
+/// As [`load_file_with`].
+pub fn load_file_from(
+    path: &Path,
+    defines: &[(String, String)],
+    limits: LoadLimits,
+    files: Arc<dyn FileSource>,
+) -> Result<LoadedScene, SceneError> {
+    let mut reader = xml::Reader::new(defines, files);
     let scene = reader.read_scene(path)?;
     let dir = path.parent().unwrap_or_else(|| Path::new(""));
     builder::Builder::new(reader, dir, limits).build(&scene)

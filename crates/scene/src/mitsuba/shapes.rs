@@ -126,14 +126,14 @@ impl Builder {
                 let path = self.resolve(&file);
                 let mut mesh = if kind == "obj" {
                     let flip_v = p.bool("flip_tex_coords", true)?;
-                    let mut m = crate::obj::read_obj_mesh(&path)
+                    let mut m = crate::obj::read_obj_mesh(&path, self.reader.files())
                         .map_err(|e| SceneError::io(&floc, format!("cannot read OBJ {}: {e}", quoted(&file))))?;
                     if !flip_v {
                         flip_uv_v(&mut m);
                     }
                     m
                 } else {
-                    let ply = crate::ply::read_ply(&path).map_err(|e| {
+                    let ply = crate::ply::read_ply_from(&path, self.reader.files()).map_err(|e| {
                         let why = match e {
                             PlyError::Io(io) => io_error_text(&io),
                             PlyError::Format(msg) => msg,

@@ -2,13 +2,21 @@
 //! already applied: `<default name value>` (unless a `-D name=value` define overrides it),
 //! `$name` substitution in attribute values, `<include filename>` (the included scene's
 //! children spliced in place; cycles are errors) and `<path value>` (a directory added to
-//! the file resolver). Every element keeps its `file:line:col`.
+//! the file resolver). Every element keeps its `file:line:col`. Files come from a
+//! [`FileSource`] (the disk, or files in memory for tests and fuzzing).
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 use crate::error::{escape_control, io_error_text, quoted, Location, SceneError, QUOTE_MAX_CHARS};
+use crate::source::FileSource;
+
+/// Deepest nesting of `<include>`s.
+const MAX_INCLUDE_DEPTH: usize = 64;
+/// Most files one scene reads through `<include>` (a file may be included many times;
+/// nested, that is exponential).
+const MAX_INCLUDES: usize = 4096;
 
 /// One XML element after directive processing.
 #[derive(Clone, Debug)]
@@ -75,19 +83,31 @@ pub struct Reader {
     search_paths: Vec<PathBuf>,
     /// The top-level file.
     top: Option<PathBuf>,
+    /// Where files are read from.
+    files: Arc<dyn FileSource>,
+    /// Files read through `<include>` so far.
+    includes: usize,
 }
 
 impl Reader {
-    /// A reader with command-line defines.
+    /// A reader with command-line defines, reading from `files`.
     #[must_use]
-    pub fn new(defines: &[(String, String)]) -> Self {
+    pub fn new(defines: &[(String, String)], files: Arc<dyn FileSource>) -> Self {
         Self {
             defines: defines.iter().cloned().collect(),
             defaults: HashMap::new(),
             stack: Vec::new(),
             search_paths: Vec::new(),
             top: None,
+            files,
+            includes: 0,
         }
+    }
+
+    /// Where the scene's files are read from.
+    #[must_use]
+    pub fn files(&self) -> &dyn FileSource {
+        &*self.files
     }
 
     /// The directories a relative file name is looked up in: `<path>` directories (the
@@ -112,24 +132,28 @@ impl Reader {
     }
 
     fn read_file(&mut self, path: &Path, from: &Location) -> Result<Element, SceneError> {
-        let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+        let canonical = path.canonicalize().unwrap_or_else(|_| lexically_normal(path));
         if self.stack.contains(&canonical) {
             return Err(SceneError::invalid(
                 from,
-                format!("cyclic <include> of {}", path.display()),
+                format!("cyclic <include> of {}", quoted(&path.to_string_lossy())),
+            ));
+        }
+        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(SceneError::invalid(
+                from,
+                format!("<include>s nested deeper than {MAX_INCLUDE_DEPTH}"),
             ));
         }
         let name: Arc<str> = path.display().to_string().into();
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let cannot_read = |why: String| {
             SceneError::io(
                 from,
-                format!(
-                    "cannot read scene file {}: {}",
-                    quoted(&path.to_string_lossy()),
-                    io_error_text(&e)
-                ),
+                format!("cannot read scene file {}: {why}", quoted(&path.to_string_lossy())),
             )
-        })?;
+        };
+        let bytes = self.files.read(path).map_err(|e| cannot_read(io_error_text(&e)))?;
+        let text = String::from_utf8(bytes).map_err(|_| cannot_read("stream did not contain valid UTF-8".into()))?;
         let doc = roxmltree::Document::parse(&text).map_err(|e| {
             let p = e.pos();
             SceneError::syntax(
@@ -206,6 +230,13 @@ impl Reader {
                     let Some(f) = get("filename") else {
                         return Err(SceneError::syntax(&loc, "<include> needs a \"filename\" attribute"));
                     };
+                    self.includes += 1;
+                    if self.includes > MAX_INCLUDES {
+                        return Err(SceneError::invalid(
+                            &loc,
+                            format!("more than {MAX_INCLUDES} <include>s in one scene"),
+                        ));
+                    }
                     let path = self.resolve_from(&f, dir);
                     let included = self.read_file(&path, &loc)?;
                     out.extend(included.children);
@@ -273,9 +304,25 @@ impl Reader {
         dirs.extend(self.search_paths());
         dirs.iter()
             .map(|d| d.join(p))
-            .find(|c| c.exists())
+            .find(|c| self.files.exists(c))
             .unwrap_or_else(|| dir.join(p))
     }
+}
+
+/// `path` with `.` components dropped and `..` applied where it can be (what identifies a
+/// file that cannot be canonicalised, e.g. one in memory, for cycle detection).
+fn lexically_normal(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// The location of byte `pos` of `doc`.

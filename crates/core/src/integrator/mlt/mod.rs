@@ -21,23 +21,38 @@
 //! MLT is unbiased only in expectation over the normalisation `b` (and the chains' start),
 //! so its per-pixel noise is not measured (the film holds splats only). Deterministic
 //! whatever the thread count: bootstrap state `i` comes from the random stream `(i, seed)`,
-//! chain `c`'s decisions from `(c, seed)` hashed, and the chains' splats are added in chain
-//! order.
+//! chain `c`'s decisions from `(c, seed)` hashed, and the splat sums are fixed point, so
+//! the order splats land in does not matter.
+//!
+//! **Work units and checkpoints.** The render is a [`MltState`] advanced by [`bootstrap`]
+//! and then by [`advance`] in steps: a step makes up to a few thousand mutations of each of
+//! a handful of running chains (a few per thread, started in index order as others
+//! finish). Each chain is a consistent state after any whole mutation and its mutations
+//! depend on nothing but its own state, so however the work is cut into steps, stopped
+//! (cancel is checked between steps and every few hundred mutations of a chain) and
+//! continued, every chain makes the same float operations in the same order, and the fixed
+//! point splat sums add to the same bits: a render continued from a saved state
+//! ([`MltState::to_bytes`]) is bit-identical to one never stopped, on any thread count.
+//! The bootstrap is one unit: a render cancelled during it restarts it.
 
+mod chain;
 pub mod contribution;
+pub mod state;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use contribution::{contribution, Buffers, STREAM_COUNT};
+use chain::{bootstrap_sampler, choose_start, Chain};
+use contribution::{contribution, Buffers};
+pub use state::MltState;
+use state::{chain_mutations, total_mutations, ChainSlot};
 
 use super::bdpt::vertex::Context;
 use super::BdptIntegrator;
 use super::TraceStats;
 use crate::film::{Film, Splat};
 use crate::math::Vec2;
-use crate::sampling::{hash_u64s, MltSampler, Pcg32};
 use crate::scene::{BdptDesc, Scene};
 
 /// MLT settings (pbrt-v4's parameters).
@@ -92,8 +107,8 @@ pub struct MltOutput {
     pub mutations: u64,
     /// Proposals accepted.
     pub accepted: u64,
-    /// Whether the render was cancelled (the film then holds the finished chains only,
-    /// with its sample count scaled down to match, to within rounding).
+    /// Whether the render was cancelled (the film then holds the mutations made, with its
+    /// sample count scaled down to match, to within rounding).
     pub cancelled: bool,
 }
 
@@ -115,19 +130,37 @@ pub fn render_with_threads(
 
 /// Bootstrap states per work unit.
 const BOOTSTRAP_CHUNK: u64 = 1024;
-/// Mutations between two looks at the cancel flag inside a chain.
-const CANCEL_CHECK: u64 = 4096;
+/// Most mutations of one chain in one step (bounds the splats a step holds).
+const MAX_STEP: u64 = 4096;
+/// Running chains per thread.
+const CHAINS_PER_THREAD: usize = 4;
 
-/// Render with MLT in the current rayon pool. `progress(done, total)` counts mutations
-/// (the bootstrap counts as done at zero); `cancel` is checked between bootstrap chunks and
-/// every few thousand mutations of a chain.
+/// Render with MLT in the current rayon pool: [`bootstrap`], then [`advance`] to the end.
+/// `progress(done, total)` counts mutations (the bootstrap counts as done at zero); `cancel`
+/// is checked between bootstrap chunks and every few hundred mutations of a chain.
 pub fn render(
     scene: &Scene,
     settings: &MltSettings,
     progress: &(dyn Fn(u64, u64) + Sync),
     cancel: &AtomicBool,
 ) -> MltOutput {
-    let (w, h) = (scene.film.width, scene.film.height);
+    let mut state = MltState::new(scene.film.width, scene.film.height);
+    let mut trace = bootstrap(scene, settings, &mut state, cancel);
+    if state.is_bootstrapped() {
+        trace += advance(scene, settings, &mut state, u64::MAX, progress, cancel);
+    }
+    MltOutput {
+        film: state.film(settings),
+        trace,
+        b: state.b(),
+        mutations: state.mutations(),
+        accepted: state.accepted(),
+        cancelled: !state.is_finished(),
+    }
+}
+
+/// The BDPT connection code's settings and scene data for MLT.
+fn context<'a>(scene: &'a Scene, settings: &MltSettings) -> Context<'a> {
     let bdpt = BdptIntegrator::new(
         scene,
         &BdptDesc {
@@ -136,34 +169,29 @@ pub fn render(
         },
         settings.max_depth,
     );
-    let ctx = Context {
+    Context {
         scene,
         scene_radius: bdpt.scene_radius,
         regularize: settings.regularize,
-    };
-    let resolution = Vec2::new(w as f32, h as f32);
-    let depths = u64::from(settings.max_depth) + 1;
-    let mpp = settings.mutations_per_pixel;
-    let total = u64::from(mpp) * u64::from(w) * u64::from(h);
-    let new_sampler = |index: u64| {
-        MltSampler::new(
-            index,
-            settings.seed,
-            settings.sigma,
-            settings.large_step_probability,
-            STREAM_COUNT,
-        )
-    };
-    let mut out = MltOutput {
-        film: Film::new(w, h),
-        trace: TraceStats::default(),
-        b: 0.0,
-        mutations: 0,
-        accepted: 0,
-        cancelled: false,
-    };
+    }
+}
 
-    // Bootstrap: the luminance of every state, in index order.
+fn resolution(state: &MltState) -> Vec2 {
+    Vec2::new(state.film.width() as f32, state.film.height() as f32)
+}
+
+/// The bootstrap of a state not yet bootstrapped: the luminance of `bootstrapsamples x
+/// (maxdepth + 1)` independent states, the normalisation `b`, and each chain's start drawn
+/// in proportion to the luminances. When `cancel` is set before it ends, the state is left
+/// as it was. A bootstrap that finds no light finishes the render (black).
+pub fn bootstrap(scene: &Scene, settings: &MltSettings, state: &mut MltState, cancel: &AtomicBool) -> TraceStats {
+    let mut trace = TraceStats::default();
+    if state.bootstrapped {
+        return trace;
+    }
+    let ctx = context(scene, settings);
+    let resolution = resolution(state);
+    let depths = u64::from(settings.max_depth) + 1;
     let n_bootstrap = u64::from(settings.bootstrap_samples) * depths;
     let chunks: Vec<(Vec<f32>, TraceStats)> = (0..n_bootstrap.div_ceil(BOOTSTRAP_CHUNK))
         .into_par_iter()
@@ -177,7 +205,7 @@ pub fn render(
             let end = (start + BOOTSTRAP_CHUNK).min(n_bootstrap);
             let weights = (start..end)
                 .map(|i| {
-                    let mut sampler = new_sampler(i);
+                    let mut sampler = bootstrap_sampler(i, settings);
                     let depth = (i % depths) as usize;
                     let p = contribution(&ctx, &mut sampler, depth, resolution, &mut buffers, &mut stats);
                     p.l.luminance().max(0.0)
@@ -186,148 +214,127 @@ pub fn render(
             (weights, stats)
         })
         .collect();
-    if cancel.load(Ordering::Relaxed) {
-        out.cancelled = true;
-        return out;
+    for (_, stats) in &chunks {
+        trace += *stats;
     }
+    if cancel.load(Ordering::Relaxed) {
+        return trace;
+    }
+    // The running sums of the luminances, in index order.
     let mut cdf = Vec::with_capacity(n_bootstrap as usize);
     let mut sum = 0.0f64;
-    for (weights, stats) in chunks {
-        out.trace += stats;
+    for (weights, _) in chunks {
         for wgt in weights {
             sum += f64::from(wgt);
             cdf.push(sum);
         }
     }
-    out.b = sum / f64::from(settings.bootstrap_samples);
-    if sum == 0.0 {
-        // No path carries light: the image is black.
-        out.film.add_samples_per_pixel(u64::from(mpp));
-        return out;
-    }
-    progress(0, total);
+    state.b = sum / f64::from(settings.bootstrap_samples);
+    state.chains = (0..u64::from(settings.chains))
+        .map(|c| {
+            if sum == 0.0 {
+                // No path carries light: the image is black.
+                ChainSlot::Done
+            } else {
+                ChainSlot::Pending(choose_start(c, &cdf, settings))
+            }
+        })
+        .collect();
+    state.bootstrapped = true;
+    trace
+}
 
-    // Chains, a batch at a time (bounded memory), splats added in chain order.
-    let chains = u64::from(settings.chains);
-    let batch = (rayon::current_num_threads() as u64 * 4).max(1);
-    let b = out.b as f32;
-    let mut done = 0u64;
-    for first in (0..chains).step_by(batch as usize) {
-        if cancel.load(Ordering::Relaxed) {
-            break;
+/// Continue the chains of a bootstrapped `state` by about `budget` mutations (rounded up to
+/// whole steps; all that are left when fewer are), each chain's splats added to the state's
+/// film scaled by `b`. Stops early, with a consistent state, when `cancel` is set.
+/// `progress(done, total)` counts mutations after each step.
+pub fn advance(
+    scene: &Scene,
+    settings: &MltSettings,
+    state: &mut MltState,
+    budget: u64,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+) -> TraceStats {
+    let mut trace = TraceStats::default();
+    let ctx = context(scene, settings);
+    let resolution = resolution(state);
+    let (width, height) = (state.film.width(), state.film.height());
+    let total = total_mutations(settings, width, height);
+    let chains = state.chains.len() as u64;
+    let b = state.b as f32;
+    let live = rayon::current_num_threads().max(1) * CHAINS_PER_THREAD;
+    let mut used = 0u64;
+    progress(state.mutations, total);
+    while used < budget && !state.is_finished() && !cancel.load(Ordering::Relaxed) {
+        // Start chains in index order until `live` of them run.
+        let mut running = state
+            .chains
+            .iter()
+            .filter(|c| matches!(c, ChainSlot::Running(_)))
+            .count();
+        let mut buffers = Buffers::default();
+        for (c, slot) in state.chains.iter_mut().enumerate() {
+            if running >= live {
+                break;
+            }
+            if let ChainSlot::Pending(start) = *slot {
+                let chain = Chain::begin(&ctx, c as u64, start, settings, resolution, &mut buffers, &mut trace);
+                *slot = ChainSlot::Running(Box::new(chain));
+                running += 1;
+            }
         }
-        let results: Vec<ChainResult> = (first..(first + batch).min(chains))
-            .into_par_iter()
-            .map(|c| {
-                let mutations = (c + 1) * total / chains - c * total / chains;
-                run_chain(&ctx, c, mutations, &cdf, resolution, settings, cancel, &new_sampler)
+        // One step: up to `k` mutations of every running chain, in parallel.
+        let k = (budget - used).div_ceil(running.max(1) as u64).clamp(1, MAX_STEP);
+        let mut work: Vec<(u64, &mut Chain)> = state
+            .chains
+            .iter_mut()
+            .enumerate()
+            .filter_map(|(c, slot)| match slot {
+                ChainSlot::Running(chain) => Some((c as u64, &mut **chain)),
+                _ => None,
             })
             .collect();
-        if results.iter().any(|r| r.cancelled) {
-            break;
-        }
-        for r in results {
-            for s in &r.splats {
-                out.film.add_splat(&Splat {
+        let steps: Vec<(Vec<Splat>, TraceStats, u64, u64)> = work
+            .par_iter_mut()
+            .map(|(c, chain)| {
+                let (done, accepted) = (chain.done, chain.accepted);
+                let n = k.min(chain_mutations(*c, chains, total) - done);
+                let mut splats = Vec::with_capacity(2 * n as usize);
+                let mut stats = TraceStats::default();
+                chain.run(
+                    &ctx,
+                    n,
+                    resolution,
+                    &mut Buffers::default(),
+                    &mut splats,
+                    &mut stats,
+                    cancel,
+                );
+                (splats, stats, chain.done - done, chain.accepted - accepted)
+            })
+            .collect();
+        drop(work);
+        for (splats, stats, mutations, accepted) in steps {
+            for s in &splats {
+                state.film.add_splat(&Splat {
                     p_film: s.p_film,
                     l: s.l * b,
                 });
             }
-            out.trace += r.trace;
-            out.mutations += r.mutations;
-            out.accepted += r.accepted;
+            trace += stats;
+            state.mutations += mutations;
+            state.accepted += accepted;
+            used += mutations;
         }
-        done = out.mutations;
-        progress(done, total);
+        for (c, slot) in state.chains.iter_mut().enumerate() {
+            if let ChainSlot::Running(chain) = slot {
+                if chain.done == chain_mutations(c as u64, chains, total) {
+                    *slot = ChainSlot::Done;
+                }
+            }
+        }
+        progress(state.mutations, total);
     }
-    out.cancelled = done < total;
-    // The film's sample count makes the mean image b / mutationsperpixel times the splat
-    // sums (a cancelled render: its share of the mutations).
-    let spp = if out.cancelled {
-        ((u128::from(mpp) * u128::from(done)).div_ceil(u128::from(total.max(1))) as u64).max(1)
-    } else {
-        u64::from(mpp)
-    };
-    out.film.add_samples_per_pixel(spp);
-    out
-}
-
-/// One chain's splats (not yet scaled by `b`) and figures.
-struct ChainResult {
-    splats: Vec<Splat>,
-    trace: TraceStats,
-    mutations: u64,
-    accepted: u64,
-    cancelled: bool,
-}
-
-/// Run chain `index` for `mutations` mutations, starting from a bootstrap state chosen by
-/// luminance from `cdf` (the running sums of the bootstrap luminances).
-#[allow(clippy::too_many_arguments)]
-fn run_chain(
-    ctx: &Context<'_>,
-    index: u64,
-    mutations: u64,
-    cdf: &[f64],
-    resolution: Vec2,
-    settings: &MltSettings,
-    cancel: &AtomicBool,
-    new_sampler: &(dyn Fn(u64) -> MltSampler + Sync),
-) -> ChainResult {
-    let mut r = ChainResult {
-        splats: Vec::with_capacity(2 * mutations as usize),
-        trace: TraceStats::default(),
-        mutations: 0,
-        accepted: 0,
-        cancelled: false,
-    };
-    let mut rng = Pcg32::new(index, hash_u64s(&[settings.seed, 0x6d6c_7400]));
-    // The starting state: bootstrap state i with probability Y_i / sum Y.
-    let total = *cdf.last().expect("a non-empty bootstrap");
-    let u = f64::from(rng.next_f32()) * total;
-    let start = cdf.partition_point(|&c| c <= u).min(cdf.len() - 1) as u64;
-    let depths = u64::from(settings.max_depth) + 1;
-    let depth = (start % depths) as usize;
-    let mut sampler = new_sampler(start);
-    let mut buffers = Buffers::default();
-    let mut current = contribution(ctx, &mut sampler, depth, resolution, &mut buffers, &mut r.trace);
-    let mut y_current = current.l.luminance().max(0.0);
-    for j in 0..mutations {
-        if j % CANCEL_CHECK == 0 && j > 0 && cancel.load(Ordering::Relaxed) {
-            r.cancelled = true;
-            return r;
-        }
-        sampler.start_iteration();
-        let proposed = contribution(ctx, &mut sampler, depth, resolution, &mut buffers, &mut r.trace);
-        let y_proposed = proposed.l.luminance().max(0.0);
-        // Metropolis-Hastings with symmetric proposals; both states are splatted with the
-        // probability of the chain being there next (expected values).
-        let accept = if y_current > 0.0 {
-            (y_proposed / y_current).min(1.0)
-        } else {
-            1.0
-        };
-        if accept > 0.0 && y_proposed > 0.0 {
-            r.splats.push(Splat {
-                p_film: proposed.p_raster,
-                l: proposed.l * (accept / y_proposed),
-            });
-        }
-        if accept < 1.0 && y_current > 0.0 {
-            r.splats.push(Splat {
-                p_film: current.p_raster,
-                l: current.l * ((1.0 - accept) / y_current),
-            });
-        }
-        if rng.next_f32() < accept {
-            current = proposed;
-            y_current = y_proposed;
-            sampler.accept();
-            r.accepted += 1;
-        } else {
-            sampler.reject();
-        }
-        r.mutations += 1;
-    }
-    r
+    trace
 }
