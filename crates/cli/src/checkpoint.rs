@@ -590,10 +590,14 @@ mod tests {
         f.pixel_mut(1, 1).add(Rgb::new(0.1, 0.2, 0.3), 0.7);
         f.pixel_mut(2, 0).add(Rgb::splat(1e-30), 1.0);
         f.add_samples_per_pixel(1);
-        f.add_splat(&mcrender_core::film::Splat {
-            p_film: mcrender_core::math::Vec2::new(0.5, 1.5),
-            l: Rgb::splat(0.25),
-        });
+        // The default Gaussian: the splat reaches several pixels.
+        f.add_splat(
+            &mcrender_core::film::Splat {
+                p_film: mcrender_core::math::Vec2::new(0.5, 1.5),
+                l: Rgb::splat(0.25),
+            },
+            &mcrender_core::film::Filter::new(&mcrender_core::scene::FilterDesc::default()),
+        );
         f
     }
 

@@ -746,6 +746,7 @@ impl Scene {
                 ),
             ));
         }
+        let filter = Filter::new(&desc.filter);
         let mut bvh = WideBvh::build(&bounds);
         let primitives = bvh.reorder_by_leaves(primitives);
         // Distant and infinite lights need the scene's size before their power is known.
@@ -760,8 +761,8 @@ impl Scene {
             light_sampler: PowerLightSampler::new(&lights),
             lights,
             infinite_lights,
-            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film)),
-            filter: Filter::new(&desc.filter),
+            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film, filter.radius())),
+            filter,
             film: desc.film,
             sampler: desc.sampler,
             integrator: desc.integrator,

@@ -15,8 +15,10 @@
 //!    moving to each (the expected-value splats of Veach 1997, section 11.5), each divided
 //!    by its luminance.
 //! 3. **Image**: the splat sums times `b / mutationsperpixel`. Splats are added with their
-//!    factor `b`, and the film counts `mutationsperpixel` samples per pixel, so that
-//!    [`Film::mean_image`] is that estimate.
+//!    factor `b`, spread over the pixels the scene's filter covers (as every splat is,
+//!    [`Splat`]), and the film counts `mutationsperpixel` samples per pixel, so that
+//!    [`Film::mean_image`] is that estimate. Camera subpaths start on the film's sample
+//!    bounds ([`contribution`]).
 //!
 //! MLT is unbiased only in expectation over the normalisation `b` (and the chains' start),
 //! so its per-pixel noise is not measured (the film holds splats only). Deterministic
@@ -30,13 +32,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use contribution::{contribution, Buffers, STREAM_COUNT};
+use contribution::{contribution, Buffers, Raster, STREAM_COUNT};
 
 use super::bdpt::vertex::Context;
 use super::BdptIntegrator;
 use super::TraceStats;
 use crate::film::{Film, Splat};
-use crate::math::Vec2;
 use crate::sampling::{hash_u64s, MltSampler, Pcg32};
 use crate::scene::{BdptDesc, Scene};
 
@@ -141,7 +142,7 @@ pub fn render(
         scene_radius: bdpt.scene_radius,
         regularize: settings.regularize,
     };
-    let resolution = Vec2::new(w as f32, h as f32);
+    let raster = Raster::new(&ctx, w, h);
     let depths = u64::from(settings.max_depth) + 1;
     let mpp = settings.mutations_per_pixel;
     let total = u64::from(mpp) * u64::from(w) * u64::from(h);
@@ -179,7 +180,7 @@ pub fn render(
                 .map(|i| {
                     let mut sampler = new_sampler(i);
                     let depth = (i % depths) as usize;
-                    let p = contribution(&ctx, &mut sampler, depth, resolution, &mut buffers, &mut stats);
+                    let p = contribution(&ctx, &mut sampler, depth, &raster, &mut buffers, &mut stats);
                     p.l.luminance().max(0.0)
                 })
                 .collect();
@@ -220,19 +221,22 @@ pub fn render(
             .into_par_iter()
             .map(|c| {
                 let mutations = (c + 1) * total / chains - c * total / chains;
-                run_chain(&ctx, c, mutations, &cdf, resolution, settings, cancel, &new_sampler)
+                run_chain(&ctx, c, mutations, &cdf, &raster, settings, cancel, &new_sampler)
             })
             .collect();
         if results.iter().any(|r| r.cancelled) {
             break;
         }
+        let splats: Vec<Splat> = results
+            .iter()
+            .flat_map(|r| &r.splats)
+            .map(|s| Splat {
+                p_film: s.p_film,
+                l: s.l * b,
+            })
+            .collect();
+        out.film.add_splats(&splats, &scene.filter);
         for r in results {
-            for s in &r.splats {
-                out.film.add_splat(&Splat {
-                    p_film: s.p_film,
-                    l: s.l * b,
-                });
-            }
             out.trace += r.trace;
             out.mutations += r.mutations;
             out.accepted += r.accepted;
@@ -269,7 +273,7 @@ fn run_chain(
     index: u64,
     mutations: u64,
     cdf: &[f64],
-    resolution: Vec2,
+    raster: &Raster,
     settings: &MltSettings,
     cancel: &AtomicBool,
     new_sampler: &(dyn Fn(u64) -> MltSampler + Sync),
@@ -290,7 +294,7 @@ fn run_chain(
     let depth = (start % depths) as usize;
     let mut sampler = new_sampler(start);
     let mut buffers = Buffers::default();
-    let mut current = contribution(ctx, &mut sampler, depth, resolution, &mut buffers, &mut r.trace);
+    let mut current = contribution(ctx, &mut sampler, depth, raster, &mut buffers, &mut r.trace);
     let mut y_current = current.l.luminance().max(0.0);
     for j in 0..mutations {
         if j % CANCEL_CHECK == 0 && j > 0 && cancel.load(Ordering::Relaxed) {
@@ -298,7 +302,7 @@ fn run_chain(
             return r;
         }
         sampler.start_iteration();
-        let proposed = contribution(ctx, &mut sampler, depth, resolution, &mut buffers, &mut r.trace);
+        let proposed = contribution(ctx, &mut sampler, depth, raster, &mut buffers, &mut r.trace);
         let y_proposed = proposed.l.luminance().max(0.0);
         // Metropolis-Hastings with symmetric proposals; both states are splatted with the
         // probability of the chain being there next (expected values).
