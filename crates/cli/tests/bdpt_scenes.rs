@@ -200,15 +200,17 @@ fn pixel_z(a: &Renders, b: &Renders, w: u32) -> (f64, (f64, u32, u32)) {
 /// Light tracing (`t = 1` alone) and the path tracer estimate the same filtered pixel
 /// integrals under wide filters: the Cornell box at 16x16, 128 spp, max depth 3 (edges of
 /// the light, the boxes and the walls, and the image border, where the filter reaches past
-/// the film) with pbrt's default Gaussian (radius 1.5) and the file's triangle filter
-/// (radius 1), 16 seeds each.
+/// the film) with pbrt's default Gaussian (radius 1.5), the file's triangle filter
+/// (radius 1) and pbrt's Mitchell filter (radius 2, B = C = 1/3, negative lobes: signed
+/// camera weights and signed splats), 16 seeds each.
 ///
 /// Every pixel and channel gives a z-score from the two renders' measured variances (each
 /// the spread of 16 seeds, so `z` follows about a Student t with 15 degrees of freedom:
 /// `E[z^2]` = 15/13 = 1.15, with a standard deviation of the mean over 768 correlated
 /// scores of about 0.12). We assert mean `z^2` < 1.8 and no `|z|` above 7.
 ///
-/// Measured: mean `z^2` 0.88 (Gaussian) and 0.90 (triangle), worst `|z|` 3.1 and 3.6.
+/// Measured: mean `z^2` 0.88 (Gaussian), 0.90 (triangle), 0.86 (Mitchell), worst `|z|` 3.1,
+/// 3.6 and 2.9. Splats that dropped the Mitchell filter's negative lobes fail with 5.3.
 /// With splats on one pixel of weight one (the code before filtered splats) the Gaussian
 /// case fails with mean `z^2` 10.1, worst `|z|` 18 (59 at the file's framing and 256 spp);
 /// with filtered splats but the camera importance cut at the pixel bounds, 5.7 and 15 at
@@ -234,6 +236,14 @@ fn light_tracing_agrees_with_the_path_tracer_per_pixel_under_wide_filters() {
             },
         ),
         ("triangle", desc.filter),
+        (
+            "mitchell",
+            FilterDesc::Mitchell {
+                radius: Vec2::splat(2.0),
+                b: 1.0 / 3.0,
+                c: 1.0 / 3.0,
+            },
+        ),
     ];
     for (name, filter) in filters {
         desc.filter = filter;

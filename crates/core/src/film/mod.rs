@@ -11,7 +11,7 @@ pub use accumulator::{Film, PixelStats};
 pub use compare::{
     block_means_of, downsample_box, pixel_rel_error, CompareError, ImageComparison, BLOCK_REL_EPSILON, DEFAULT_BLOCK,
 };
-pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
+pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, MitchellFilter, TriangleFilter};
 pub use splat::{Footprint, Splat};
 pub use splat_sum::{SplatSum, MAX_SPLAT};
 pub use statistics::{FilmStatistics, REL_MSE_EPSILON};

@@ -118,6 +118,10 @@ impl SceneDescription {
                     return Err(invalid("filter sigma", format!("expected > 0, found {sigma}")));
                 }
             }
+            super::FilterDesc::Mitchell { radius, b, c } => {
+                check_positive_radius(radius.to_array())?;
+                check_finite("Mitchell filter B and C", &[b, c])?;
+            }
         }
         for (i, m) in self.materials.iter().enumerate() {
             match m {
