@@ -21,12 +21,14 @@
 //! A camera sample drawn this way is a camera ray whose importance, per unit lens area and
 //! solid angle, is `W_j = n We f(x - c_j) / F`, with `We` the importance of a film point
 //! chosen uniformly over the `n` pixels ([`crate::camera`]): `I_j = <W_j, L>`, the
-//! measurement equation. A light path (one per camera sample, `n spp` in all) connected to
-//! the lens gives `We T / pdf` (`T` the path throughput, `pdf` its density; this is the
-//! splat's value `L`) and estimates `<n We, L>` restricted to where `x` lands; so
-//! `(1 / (n spp)) sum_paths n L f(x - c_j) / F = (1 / spp) sum_paths L f(x - c_j) / F`
-//! estimates `I_j` without bias: exactly the splat sum over `spp`. Two conditions make it
-//! hold at every pixel:
+//! measurement equation. A light path connected to the lens through film point `x` has
+//! the value `We T / pdf` (`T` the throughput of the whole path, `pdf` its density; this
+//! is the splat's `L`), whose expectation is `<We g, L>` for any weight `g(x)` applied to
+//! it; with `g = n f(x - c_j) / F` that is `I_j`. One light path is traced per camera
+//! sample, `n spp` in all, so their average,
+//! `(1 / (n spp)) sum_paths n L f(x - c_j) / F = (1 / spp) sum_paths L f(x - c_j) / F`,
+//! estimates `I_j` without bias: exactly the pixel's splat sum over `spp`. Two
+//! conditions make it hold at every pixel:
 //!
 //! - The light path must be able to land wherever `f(x - c_j) != 0` for some pixel `j`,
 //!   i.e. on the film's *sample bounds* (pixel bounds grown by the filter radius less half
