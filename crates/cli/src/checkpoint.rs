@@ -2,12 +2,14 @@
 //! render's state; `mcrender render --resume FILE [-o OUT]` continues it, to the same bytes
 //! as a render that was never stopped.
 //!
-//! File layout (version 3), chosen so that a reader needs nothing but this comment:
+//! File layout (versions 3 and 4), chosen so that a reader needs nothing but this comment:
 //!
 //! ```text
 //! "MCRCKPT\n"                      8 bytes, magic
-//! version                          u32 little-endian (3; versions 1 and 2 stored the splat
-//!                                  sums as f64 and are refused)
+//! version                          u32 little-endian (4; versions 1 and 2 stored the splat
+//!                                  sums as f64 and are refused; version 3 has this layout
+//!                                  but splats added to one pixel with weight one, so it is
+//!                                  read only when it holds no splats)
 //! header length                    u64 little-endian
 //! header                           UTF-8 JSON: format, version, binary, fingerprint, cwd,
 //!                                  args, output, samples_done, samples_per_pixel, width,
@@ -59,9 +61,10 @@ use crate::builtin;
 use crate::render_cmd::RenderArgs;
 
 const MAGIC: &[u8; 8] = b"MCRCKPT\n";
-const VERSION: u32 = 3;
-/// Versions this binary reads (the integrator-state section is optional).
-const READS: [u32; 1] = [3];
+const VERSION: u32 = 4;
+/// Versions this binary reads (the integrator-state section is optional; version 3 only
+/// without splats).
+const READS: [u32; 2] = [3, 4];
 /// Prefix of the integrator-state section's name.
 const STATE_PREFIX: &str = "integrator.";
 /// Bytes per pixel in the film section: 7 f64 + 1 u64 + 3 i128.
@@ -523,6 +526,16 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
     if at != body.len() {
         return Err("bytes after the last section".into());
     }
+    if version == 3
+        && film
+            .as_ref()
+            .is_some_and(|f| f.splat_sums().iter().any(|s| !s.is_zero()))
+    {
+        return Err(
+            "format version 3 with splats, which that version added to one pixel; this mcrender spreads them with the pixel filter (render again)"
+                .into(),
+        );
+    }
     Ok(Checkpoint {
         fingerprint: text("fingerprint")?,
         cwd: PathBuf::from(text("cwd")?),
@@ -596,10 +609,14 @@ mod tests {
         f.pixel_mut(1, 1).add(Rgb::new(0.1, 0.2, 0.3), 0.7);
         f.pixel_mut(2, 0).add(Rgb::splat(1e-30), 1.0);
         f.add_samples_per_pixel(1);
-        f.add_splat(&mcrender_core::film::Splat {
-            p_film: mcrender_core::math::Vec2::new(0.5, 1.5),
-            l: Rgb::splat(0.25),
-        });
+        // The default Gaussian: the splat reaches several pixels.
+        f.add_splat(
+            &mcrender_core::film::Splat {
+                p_film: mcrender_core::math::Vec2::new(0.5, 1.5),
+                l: Rgb::splat(0.25),
+            },
+            &mcrender_core::film::Filter::new(&mcrender_core::scene::FilterDesc::default()),
+        );
         f
     }
 
@@ -651,13 +668,33 @@ mod tests {
         let mut file = std::fs::read(&path).unwrap();
         assert_eq!(parse(&file).unwrap().film, film());
         file.truncate(file.len() - 32);
-        for version in [2u32, 4] {
-            file[8..12].copy_from_slice(&version.to_le_bytes());
-            let mut signed = file.clone();
-            signed.extend_from_slice(&Sha256::digest(&file));
-            let err = parse(&signed).unwrap_err();
+        let signed = |file: &[u8], version: u32| {
+            let mut f = file.to_vec();
+            f[8..12].copy_from_slice(&version.to_le_bytes());
+            let sum = Sha256::digest(&f);
+            f.extend_from_slice(&sum);
+            f
+        };
+        for version in [2u32, 5] {
+            let err = parse(&signed(&file, version)).unwrap_err();
             assert!(err.contains(&format!("version {version}")), "{err}");
         }
+        // Version 3 added splats to one pixel: refused with splats, read without.
+        let err = parse(&signed(&file, 3)).unwrap_err();
+        assert!(err.contains("version 3 with splats"), "{err}");
+        let f = film();
+        let no_splats = Film::from_parts(
+            f.width(),
+            f.height(),
+            f.pixels().to_vec(),
+            vec![SplatSum::ZERO; f.pixels().len()],
+            f.samples_per_pixel(),
+        )
+        .unwrap();
+        write(&path, "ab12", &invocation(), 4, &no_splats, None).unwrap();
+        let mut file = std::fs::read(&path).unwrap();
+        file.truncate(file.len() - 32);
+        assert_eq!(parse(&signed(&file, 3)).unwrap().film, no_splats);
     }
 
     #[test]

@@ -130,6 +130,26 @@ fn closed_emissive_sphere() {
     );
 }
 
+/// The same sphere with pbrt's default Gaussian filter (radius 1.5) on the 4x4 film, where
+/// 12 of the 16 pixels are at the border: every pixel's filtered integral is the constant
+/// radiance, so the image mean must be too. This needs camera subpaths started over the
+/// film's sample bounds with their contribution scaled to the pixel bounds' density (off
+/// by the area ratio 36/16 for the camera-side strategies otherwise) and the importance
+/// of the light-tracing strategies reaching the margin (the border pixels darken
+/// otherwise).
+#[test]
+fn closed_emissive_sphere_with_a_wide_filter() {
+    let mut d = closed_sphere(0.5, 1.0);
+    d.filter = mcrender_core::scene::FilterDesc::default();
+    d.integrator.max_depth = 3;
+    let expected = (1.0 - 0.5f32.powi(4)) / (1.0 - 0.5);
+    assert_close(
+        "closed emissive sphere, Gaussian filter",
+        mean_over_seeds(&d, SEEDS),
+        Rgb::splat(expected),
+    );
+}
+
 #[test]
 fn uniform_sky() {
     let mut d = closed_sphere(0.0, 1.5);

@@ -449,12 +449,22 @@ fn filter_defaults_and_fallbacks() {
     let s = load("PixelFilter \"mitchell\" \"float B\" 0.3\nWorldBegin");
     assert_eq!(
         s.description.filter,
+        FilterDesc::Mitchell {
+            radius: Vec2::splat(2.0),
+            b: 0.3,
+            c: 1.0 / 3.0
+        }
+    );
+    assert!(!s.warnings.iter().any(|w| w.contains("filter")), "{:?}", s.warnings);
+    let s = load("PixelFilter \"lanczos\"\nWorldBegin");
+    assert_eq!(
+        s.description.filter,
         FilterDesc::Gaussian {
             radius: Vec2::splat(1.5),
             sigma: 0.5
         }
     );
-    assert!(s.warnings[0].contains("pixel filter \"mitchell\" is not implemented yet; using \"gaussian\""));
+    assert!(s.warnings[0].contains("pixel filter \"lanczos\" is not implemented yet; using \"gaussian\""));
 }
 
 #[test]

@@ -13,6 +13,14 @@
 //! `pdf_pos = 1 / A_lens` and `pdf_dir = 1 / (A cos^3 theta)`. A pixel's measurement is
 //! `n_pixels` times the film's, which is why splats are divided by the samples per pixel
 //! and not by the number of light paths.
+//!
+//! `A` is the area of the pixel bounds (pbrt-v4 uses the full resolution too), but the
+//! importance is non-zero over the film's *sample bounds*, the pixel bounds grown by the
+//! pixel filter's radius less half a pixel (pbrt-v4 `FilmBase::SampleBounds`): a pixel at
+//! the border of the image integrates radiance arriving up to its filter's radius beyond
+//! the border, its camera samples land there, and light paths must be able to reach it
+//! too (see [`crate::film::Splat`] for the whole argument). The same formulas hold there:
+//! `We` and `pdf_dir` are those of the uniform density over the pixel bounds, extended.
 
 use super::PerspectiveCamera;
 use crate::math::{Ray, Vec2, Vec3, PI};
@@ -61,9 +69,15 @@ impl PerspectiveCamera {
         self.world_from_camera.vector(Vec3::Z).normalize()
     }
 
+    /// The film's sample bounds in raster space, `[min, max)` (see the module docs).
+    #[must_use]
+    pub fn sample_bounds(&self) -> [Vec2; 2] {
+        self.sample_bounds
+    }
+
     /// The raster position a ray leaving the lens at `ray.o` in direction `ray.d` came
     /// through (the inverse of `generate_ray`), and the cosine of its angle to the viewing
-    /// axis; `None` for rays that point backwards or miss the film.
+    /// axis; `None` for rays that point backwards or land outside the sample bounds.
     #[must_use]
     pub fn raster_position(&self, ray: &Ray) -> Option<(Vec2, f32)> {
         let d = self.camera_from_world.vector(ray.d).try_normalize()?;
@@ -85,12 +99,13 @@ impl PerspectiveCamera {
             (q.x - x0) / (x1 - x0) * self.resolution.x,
             (y1 - q.y) / (y1 - y0) * self.resolution.y,
         );
-        let inside = p.x >= 0.0 && p.y >= 0.0 && p.x < self.resolution.x && p.y < self.resolution.y;
+        let [min, max] = self.sample_bounds;
+        let inside = p.x >= min.x && p.y >= min.y && p.x < max.x && p.y < max.y;
         inside.then_some((p, cos_theta))
     }
 
     /// Importance `We` of `ray` (leaving the lens) and its raster position; `None` when it
-    /// misses the film.
+    /// lands outside the sample bounds.
     #[must_use]
     pub fn we(&self, ray: &Ray) -> Option<(f32, Vec2)> {
         let (p, cos) = self.raster_position(ray)?;
@@ -100,7 +115,7 @@ impl PerspectiveCamera {
 
     /// Densities `(pdf_pos, pdf_dir)` of generating `ray` with a uniform lens point and a
     /// uniform film point: `1 / A_lens` per unit area, `1 / (A cos^3)` per unit solid
-    /// angle; zeros when the ray misses the film.
+    /// angle; zeros when the ray lands outside the sample bounds.
     #[must_use]
     pub fn pdf_we(&self, ray: &Ray) -> (f32, f32) {
         match self.raster_position(ray) {
@@ -111,7 +126,7 @@ impl PerspectiveCamera {
 
     /// Choose a lens point uniformly (`u`; the centre for a pinhole) to see `p_ref`: the
     /// direction, its solid-angle density at `p_ref`, the importance and the raster
-    /// position. `None` when the ray misses the film.
+    /// position. `None` when the ray lands outside the sample bounds.
     #[must_use]
     pub fn sample_wi(&self, p_ref: Vec3, u: Vec2) -> Option<CameraWiSample> {
         let p_lens_camera = self.lens_radius * sample_uniform_disk_concentric(u);

@@ -9,8 +9,14 @@ use crate::math::{Mat4, Transform};
 use crate::sampling::chi2::{suite_seed, Chi2Test, SphereGrid, SIGNIFICANCE};
 use crate::sampling::{sample_uniform_sphere, uniform_sphere_pdf, Pcg32};
 
-/// A wide, turned and moved camera (`lens_radius` 0 for a pinhole).
+/// A wide, turned and moved camera (`lens_radius` 0 for a pinhole) whose film's sample
+/// bounds are its pixel bounds (a filter of radius 1/2).
 fn camera(lens_radius: f32) -> PerspectiveCamera {
+    camera_with_filter(lens_radius, 0.5)
+}
+
+/// The same camera with a pixel filter of radius `filter_radius`.
+fn camera_with_filter(lens_radius: f32, filter_radius: f32) -> PerspectiveCamera {
     let m =
         Mat4::from_translation(Vec3::new(1.0, -2.0, 0.5)) * Mat4::from_rotation_y(0.7) * Mat4::from_rotation_x(-0.3);
     PerspectiveCamera::new(
@@ -22,6 +28,7 @@ fn camera(lens_radius: f32) -> PerspectiveCamera {
             screen_window: None,
         },
         &FilmDesc { width: 48, height: 32 },
+        Vec2::splat(filter_radius),
     )
 }
 
@@ -49,13 +56,41 @@ fn raster_position_inverts_generate_ray() {
     }
 }
 
+/// The importance reaches the film's sample bounds: with a filter of radius 1.5, a ray
+/// through raster x = -0.9 (within a radius of pixel 0's centre) sees the camera, one
+/// through x = -1.1 does not; with radius 1/2 the pixel bounds are the limit.
+#[test]
+fn importance_covers_the_sample_bounds() {
+    let wide = camera_with_filter(0.0, 1.5);
+    let narrow = camera(0.0);
+    assert_eq!(wide.sample_bounds(), [Vec2::splat(-1.0), Vec2::new(49.0, 33.0)]);
+    let ray = |p: Vec2| wide.generate_ray(p, Vec2::splat(0.5));
+    for (p, inside_wide, inside_narrow) in [
+        (Vec2::new(-0.9, 5.0), true, false),
+        (Vec2::new(-1.1, 5.0), false, false),
+        (Vec2::new(20.0, 32.9), true, false),
+        (Vec2::new(48.5, 33.1), false, false),
+        (Vec2::new(0.1, 0.1), true, true),
+    ] {
+        assert_eq!(wide.we(&ray(p)).is_some(), inside_wide, "{p}");
+        assert_eq!(narrow.we(&ray(p)).is_some(), inside_narrow, "{p}");
+        assert_eq!(wide.pdf_we(&ray(p)).1 > 0.0, inside_wide, "{p}");
+        if let Some((_, q)) = wide.we(&ray(p)) {
+            assert!((q - p).length() < 1e-3, "{p} came back as {q}");
+        }
+    }
+}
+
 /// `integral We cos dw = 1` over the directions from the lens centre (pinhole), and
 /// `integral integral We cos dw dA_lens = 1` with a lens: uniform directions on the sphere
-/// (and uniform lens points), within 4 standard errors.
+/// (and uniform lens points), within 4 standard errors. Over the sample bounds of a wider
+/// filter the integrals are the ratio of the sample bounds' area to the pixel bounds'.
 #[test]
 fn importance_is_normalised() {
-    for lens in [0.0, 0.3] {
-        let cam = camera(lens);
+    for (lens, radius) in [(0.0, 0.5), (0.3, 0.5), (0.0, 1.5), (0.3, 2.0)] {
+        let cam = camera_with_filter(lens, radius);
+        let grow = 2.0 * (radius - 0.5);
+        let area_ratio = f64::from((48.0 + grow) * (32.0 + grow) / (48.0 * 32.0));
         let mut rng = Pcg32::new(suite_seed(), 2);
         let n = 400_000;
         let (mut sum, mut sum2, mut pdf_sum) = (0.0f64, 0.0f64, 0.0f64);
@@ -74,14 +109,14 @@ fn importance_is_normalised() {
         let mean = sum / f64::from(n);
         let se = ((sum2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt();
         assert!(
-            (mean - 1.0).abs() < 4.0 * se,
-            "lens {lens}: integral of We cos = {mean} +- {se}"
+            (mean - area_ratio).abs() < 4.0 * se,
+            "lens {lens}, radius {radius}: integral of We cos = {mean} +- {se}, expected {area_ratio}"
         );
-        // pdf_dir is a density over the film's directions.
+        // pdf_dir is a density over the pixel bounds' directions.
         let pdf_integral = pdf_sum / f64::from(n);
         assert!(
-            (pdf_integral - 1.0).abs() < 0.02,
-            "lens {lens}: pdf_dir integrates to {pdf_integral}"
+            (pdf_integral - area_ratio).abs() < 0.02,
+            "lens {lens}, radius {radius}: pdf_dir integrates to {pdf_integral}, expected {area_ratio}"
         );
     }
 }

@@ -37,6 +37,15 @@ impl Camera {
         }
     }
 
+    /// The film's sample bounds in raster space, `[min, max)`: where camera samples land
+    /// and the importance is non-zero (see [`PerspectiveCamera::sample_bounds`]).
+    #[must_use]
+    pub fn sample_bounds(&self) -> [Vec2; 2] {
+        match self {
+            Self::Perspective(c) => c.sample_bounds(),
+        }
+    }
+
     /// Importance of `ray` leaving the lens, and where it lands on the film (raster
     /// coordinates); `None` when it misses the film (see [`PerspectiveCamera::we`]).
     #[must_use]

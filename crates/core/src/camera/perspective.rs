@@ -24,15 +24,20 @@ pub struct PerspectiveCamera {
     /// Screen window `[x_min, x_max, y_min, y_max]`.
     screen: [f32; 4],
     resolution: Vec2,
+    /// The film's sample bounds in raster space, `[min, max)`: the pixel bounds grown by
+    /// the pixel filter's radius less half a pixel (pbrt-v4 `FilmBase::SampleBounds`),
+    /// where camera samples land and where the importance is non-zero.
+    sample_bounds: [Vec2; 2],
     tan_half_fov: f32,
     lens_radius: f32,
     focal_distance: f32,
 }
 
 impl PerspectiveCamera {
-    /// Build from the description and the film size.
+    /// Build from the description, the film size and the radius of the pixel filter (which
+    /// sets the sample bounds: a pixel's samples reach `radius` beyond its centre).
     #[must_use]
-    pub fn new(desc: &CameraDesc, film: &FilmDesc) -> Self {
+    pub fn new(desc: &CameraDesc, film: &FilmDesc, filter_radius: Vec2) -> Self {
         let aspect = film.width as f32 / film.height as f32;
         let screen = desc.screen_window.unwrap_or(if aspect > 1.0 {
             [-aspect, aspect, -1.0, 1.0]
@@ -45,6 +50,10 @@ impl PerspectiveCamera {
             min_dir_differential: [Vec3::ZERO; 2],
             screen,
             resolution: Vec2::new(film.width as f32, film.height as f32),
+            sample_bounds: [
+                Vec2::splat(0.5) - filter_radius,
+                Vec2::new(film.width as f32, film.height as f32) - Vec2::splat(0.5) + filter_radius,
+            ],
             tan_half_fov: (desc.fov_degrees.to_radians() * 0.5).tan(),
             lens_radius: desc.lens_radius,
             focal_distance: desc.focal_distance,
@@ -152,6 +161,7 @@ mod tests {
                 width: 200,
                 height: 100,
             },
+            Vec2::splat(0.5),
         );
         let r = cam.generate_ray(Vec2::new(100.0, 50.0), Vec2::ZERO);
         assert!((r.d - Vec3::Z).length() < 1e-6);
@@ -169,7 +179,7 @@ mod tests {
             focal_distance: 3.0,
             ..Default::default()
         };
-        let cam = PerspectiveCamera::new(&desc, &FilmDesc { width: 64, height: 64 });
+        let cam = PerspectiveCamera::new(&desc, &FilmDesc { width: 64, height: 64 }, Vec2::splat(0.5));
         let p = Vec2::new(10.0, 20.0);
         let a = cam.generate_ray(p, Vec2::new(0.1, 0.9));
         let b = cam.generate_ray(p, Vec2::new(0.8, 0.3));

@@ -6,11 +6,15 @@
 //! samples' own spread: with `n` samples, `Var[mean] ~= s^2 / n` where `s^2` is the unbiased
 //! sample variance of the `w L / mean(w)` values.
 //!
-//! Beside the samples, each pixel has a splat sum ([`super::Splat`], kept exactly and in any
-//! order by [`SplatSum`]); the displayed value is `mean + splat_sum / spp` with `spp` the
-//! samples per pixel of the whole film. The variance covers the pixel's own samples only.
+//! Beside the samples, each pixel has a splat sum ([`super::Splat`]: every splat adds its
+//! value times the pixel filter's normalised weight to each pixel the filter covers, kept
+//! exactly and in any order by [`SplatSum`]); the displayed value is
+//! `mean + splat_sum / spp` with `spp` the samples per pixel of the whole film. The
+//! variance covers the pixel's own samples only.
 
-use super::{Splat, SplatSum};
+use rayon::prelude::*;
+
+use super::{Filter, Footprint, Splat, SplatSum};
 use crate::color::Rgb;
 
 /// Running sums for one pixel, in `f64` so long renders do not lose precision.
@@ -173,13 +177,44 @@ impl Film {
         self.samples_per_pixel += n;
     }
 
-    /// Add a splat to the pixel containing its position. Splats outside the image, or with
-    /// a non-finite or huge value ([`SplatSum::add`]), are dropped (returns `false`). The
-    /// order splats are added in does not change the film.
-    pub fn add_splat(&mut self, s: &Splat) -> bool {
-        let (x, y) = (s.p_film.x.floor(), s.p_film.y.floor());
-        let inside = x >= 0.0 && y >= 0.0 && x < self.width as f32 && y < self.height as f32;
-        inside && self.splats[y as usize * self.width as usize + x as usize].add(s.l)
+    /// Add a splat to every pixel `filter` covers, with weight `f(offset) / integral of f`
+    /// (see [`Splat`]). A splat that reaches no pixel, or whose value is not finite or huge
+    /// ([`SplatSum::accepts`]), is dropped (returns `false`). The order splats are added
+    /// in does not change the film.
+    pub fn add_splat(&mut self, s: &Splat, filter: &Filter) -> bool {
+        let Some(fp) = s.footprint(filter, self.width, self.height) else {
+            return false;
+        };
+        let rows = 0..self.height;
+        spread(s, &fp, filter, rows, self.width, &mut self.splats);
+        true
+    }
+
+    /// Add many splats (as [`Self::add_splat`]), in parallel over bands of rows of the
+    /// current rayon pool: each band adds the part of every splat that falls on it, so the
+    /// film is the same as when adding them one by one. Returns the number dropped.
+    pub fn add_splats(&mut self, splats: &[Splat], filter: &Filter) -> u64 {
+        let (w, h) = (self.width, self.height);
+        if w == 0 || h == 0 {
+            return splats.len() as u64;
+        }
+        let footprints: Vec<Option<Footprint>> = splats.par_iter().map(|s| s.footprint(filter, w, h)).collect();
+        let dropped = footprints.iter().filter(|f| f.is_none()).count() as u64;
+        let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
+        let band_rows = (h as usize).div_ceil(bands);
+        self.splats
+            .par_chunks_mut(band_rows * w as usize)
+            .enumerate()
+            .for_each(|(b, band)| {
+                let y0 = (b * band_rows) as u32;
+                let rows = y0..y0 + (band.len() / w as usize) as u32;
+                for (s, fp) in splats.iter().zip(&footprints) {
+                    if let Some(fp) = fp {
+                        spread(s, fp, filter, rows.clone(), w, band);
+                    }
+                }
+            });
+        dropped
     }
 
     /// Add another film's samples of the same image (e.g. a later wave of samples): the
@@ -268,6 +303,22 @@ impl Film {
     }
 }
 
+/// Add the part of splat `s` (footprint `fp`) that falls on image rows `rows`, whose splat
+/// sums are `sums` (row-major, `width` per row, starting at `rows.start`).
+fn spread(s: &Splat, fp: &Footprint, filter: &Filter, rows: std::ops::Range<u32>, width: u32, sums: &mut [SplatSum]) {
+    let inv_integral = 1.0 / filter.integral();
+    for y in fp.y0.max(rows.start)..fp.y1.min(rows.end) {
+        let row = (y - rows.start) as usize * width as usize;
+        for x in fp.x0..fp.x1 {
+            let wgt = s.weight(filter, inv_integral, x, y);
+            if wgt != 0.0 {
+                // Refused only when l * w overflows the fixed point: that pixel alone.
+                sums[row + x as usize].add_weighted(s.l, wgt);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,24 +334,44 @@ mod tests {
         assert!((p.variance_of_mean().g - 5.0 / 12.0).abs() < 1e-6);
     }
 
+    use crate::math::Vec2;
+    use crate::scene::FilterDesc;
+
+    /// A box one pixel wide: every splat lands on the pixel containing it.
+    fn pixel_box() -> Filter {
+        Filter::new(&FilterDesc::Box {
+            radius: Vec2::splat(0.5),
+        })
+    }
+
     #[test]
     fn splats_add_over_the_whole_image_spp() {
         let mut f = Film::new(2, 1);
         f.pixel_mut(0, 0).add(Rgb::splat(1.0), 1.0);
         f.pixel_mut(0, 0).add(Rgb::splat(3.0), 1.0);
         f.add_samples_per_pixel(2);
-        assert!(f.add_splat(&Splat {
-            p_film: crate::math::Vec2::new(1.7, 0.2),
-            l: Rgb::splat(4.0),
-        }));
-        assert!(!f.add_splat(&Splat {
-            p_film: crate::math::Vec2::new(2.0, 0.5),
-            l: Rgb::splat(1.0),
-        }));
-        assert!(!f.add_splat(&Splat {
-            p_film: crate::math::Vec2::new(0.5, 0.5),
-            l: Rgb::splat(f32::NAN),
-        }));
+        let b = pixel_box();
+        assert!(f.add_splat(
+            &Splat {
+                p_film: Vec2::new(1.7, 0.2),
+                l: Rgb::splat(4.0),
+            },
+            &b
+        ));
+        assert!(!f.add_splat(
+            &Splat {
+                p_film: Vec2::new(2.01, 0.5),
+                l: Rgb::splat(1.0),
+            },
+            &b
+        ));
+        assert!(!f.add_splat(
+            &Splat {
+                p_film: Vec2::new(0.5, 0.5),
+                l: Rgb::splat(f32::NAN),
+            },
+            &b
+        ));
         let img = f.mean_image();
         assert_eq!(img[0], Rgb::splat(2.0));
         // No samples of its own, one splat of 4 over 2 spp.
@@ -309,6 +380,67 @@ mod tests {
         g.merge(&f);
         assert_eq!(g.samples_per_pixel(), 4);
         assert_eq!(g.mean_image()[1], Rgb::splat(2.0));
+    }
+
+    /// A Gaussian splat adds `L f(offset) / integral` to each pixel within the radius,
+    /// including from the margin outside the image that the filter still reaches, and
+    /// adding splats in parallel bands gives the bits of adding them one at a time.
+    #[test]
+    fn splats_spread_over_the_filter() {
+        let g = Filter::new(&FilterDesc::default());
+        let (w, h) = (7u32, 5u32);
+        let one = Splat {
+            p_film: Vec2::new(3.2, 2.9),
+            l: Rgb::new(1.0, 2.0, 0.5),
+        };
+        let mut f = Film::new(w, h);
+        assert!(f.add_splat(&one, &g));
+        let mut touched = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let d = one.p_film - Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                let expected = g.evaluate(d) / g.integral();
+                let got = f.splat_sums()[(y * w + x) as usize].to_f64();
+                assert!((got[1] - 2.0 * f64::from(expected)).abs() < 1e-6, "({x}, {y})");
+                touched += usize::from(expected > 0.0);
+            }
+        }
+        // Centres within 1.5 of (3.2, 2.9): columns 2..=4, rows 1..=3 (at most 4 x 4).
+        assert_eq!(touched, 9);
+        // From outside the pixel bounds, inside the sample bounds: pixel 0 still gets some.
+        let mut margin = Film::new(w, h);
+        assert!(margin.add_splat(
+            &Splat {
+                p_film: Vec2::new(-0.8, 2.5),
+                l: Rgb::splat(1.0),
+            },
+            &g
+        ));
+        assert!(!margin.splat_sums()[2 * w as usize].is_zero());
+        assert!(!margin.add_splat(
+            &Splat {
+                p_film: Vec2::new(-1.1, 2.5),
+                l: Rgb::splat(1.0),
+            },
+            &g
+        ));
+        // Many splats, one at a time and in bands (both sizes of pool).
+        let splats: Vec<Splat> = (0..500u32)
+            .map(|i| Splat {
+                p_film: Vec2::new((i * 37 % 97) as f32 / 10.0 - 1.0, (i * 53 % 71) as f32 / 10.0 - 1.0),
+                l: Rgb::new(1e-3 * i as f32, 10.0f32.powi(i as i32 % 9 - 4), 1.0),
+            })
+            .collect();
+        let mut serial = Film::new(w, h);
+        let serial_dropped = splats.iter().filter(|s| !serial.add_splat(s, &g)).count() as u64;
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let mut banded = Film::new(w, h);
+            let dropped = pool.install(|| banded.add_splats(&splats, &g));
+            assert_eq!(dropped, serial_dropped);
+            assert_eq!(banded.splat_sums(), serial.splat_sums(), "{threads} threads");
+        }
+        assert!(serial_dropped > 0);
     }
 
     #[test]

@@ -41,6 +41,15 @@ pub enum FilterDesc {
         /// Standard deviation in pixels.
         sigma: f32,
     },
+    /// Separable Mitchell-Netravali cubic (pbrt-v4's `mitchell`), negative in its lobes.
+    Mitchell {
+        /// Radius per axis (pbrt default 2).
+        radius: Vec2,
+        /// The cubic's `B` (pbrt default 1/3).
+        b: f32,
+        /// The cubic's `C` (pbrt default 1/3).
+        c: f32,
+    },
 }
 
 impl Default for FilterDesc {

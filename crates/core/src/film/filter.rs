@@ -1,15 +1,19 @@
-//! Pixel reconstruction filters. The film does not splat: each camera sample is placed at
-//! the pixel centre plus an offset `p` drawn from the filter by importance sampling, and
+//! Pixel reconstruction filters. Camera samples are not splatted: each is placed at the
+//! pixel centre plus an offset `p` drawn from the filter by importance sampling, and
 //! carries the weight `f(p) / (pdf(p) * integral of f)`, so the pixel value is
 //! `sum weight * L / sum weight`. The weight is exactly 1 for the box and triangle filters,
-//! whose sampling densities are proportional to them, and close to 1 for the Gaussian.
+//! whose sampling densities are proportional to them, close to 1 for the Gaussian, and
+//! about plus or minus 1 for the Mitchell filter, sampled by `|f|` (negative in its lobes).
+//! Light-tracing splats use [`Filter::evaluate`] instead ([`super::Splat`]).
 
 mod box_filter;
 mod gaussian_filter;
+mod mitchell_filter;
 mod triangle_filter;
 
 pub use box_filter::BoxFilter;
 pub use gaussian_filter::GaussianFilter;
+pub use mitchell_filter::MitchellFilter;
 pub use triangle_filter::TriangleFilter;
 
 use super::FilterDesc;
@@ -21,7 +25,7 @@ pub struct FilterSample {
     /// Offset from the pixel centre, in pixels, inside [-radius, radius].
     pub p: Vec2,
     /// `f(p) / (pdf(p) * integral of f)`: 1 on average, exactly 1 when the sampling
-    /// density is proportional to the filter.
+    /// density is proportional to the filter, negative where the filter is.
     pub weight: f32,
 }
 
@@ -34,6 +38,8 @@ pub enum Filter {
     Triangle(TriangleFilter),
     /// Separable truncated Gaussian.
     Gaussian(GaussianFilter),
+    /// Separable Mitchell-Netravali cubic, with negative lobes.
+    Mitchell(MitchellFilter),
 }
 
 /// Forwards a method call to the variant inside a [`Filter`].
@@ -43,6 +49,7 @@ macro_rules! dispatch {
             Filter::Box($f) => $call,
             Filter::Triangle($f) => $call,
             Filter::Gaussian($f) => $call,
+            Filter::Mitchell($f) => $call,
         }
     };
 }
@@ -58,6 +65,7 @@ impl Filter {
             FilterDesc::Box { radius } => Self::Box(BoxFilter::new(radius)),
             FilterDesc::Triangle { radius } => Self::Triangle(TriangleFilter::new(radius)),
             FilterDesc::Gaussian { radius, sigma } => Self::Gaussian(GaussianFilter::new(radius, sigma)),
+            FilterDesc::Mitchell { radius, b, c } => Self::Mitchell(MitchellFilter::new(radius, b, c)),
         }
     }
 

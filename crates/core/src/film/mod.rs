@@ -13,7 +13,7 @@ pub use compare::{
     block_means_of, downsample_box, pixel_rel_error, CompareError, ImageComparison, BLOCK_REL_EPSILON, DEFAULT_BLOCK,
 };
 pub use desc::{FilmDesc, FilterDesc};
-pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, TriangleFilter};
-pub use splat::Splat;
+pub use filter::{BoxFilter, Filter, FilterSample, GaussianFilter, MitchellFilter, TriangleFilter};
+pub use splat::{Footprint, Splat};
 pub use splat_sum::{SplatSum, MAX_SPLAT};
 pub use statistics::{FilmStatistics, REL_MSE_EPSILON};

@@ -55,6 +55,19 @@ impl SplatSum {
         true
     }
 
+    /// Whether every channel of `l` can be added (finite, below [`MAX_SPLAT`]).
+    #[must_use]
+    pub fn accepts(l: Rgb) -> bool {
+        [l.r, l.g, l.b].iter().all(|&v| Self::quantize(v).is_some())
+    }
+
+    /// Add `l w` (a splat's radiance times its filter weight for this pixel, rounded to
+    /// `f32` per channel before it is fixed); returns false (and adds nothing) when a
+    /// channel of the product is not finite or too large.
+    pub fn add_weighted(&mut self, l: Rgb, w: f32) -> bool {
+        self.add(Rgb::new(l.r * w, l.g * w, l.b * w))
+    }
+
     /// Add another pixel's sum (exact, in any order).
     pub fn merge(&mut self, other: &Self) {
         for (sum, v) in self.fixed.iter_mut().zip(other.fixed) {

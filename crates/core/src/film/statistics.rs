@@ -82,10 +82,16 @@ mod tests {
         let mut f = Film::new(1, 1);
         f.pixel_mut(0, 0).add(Rgb::splat(1.0), 1.0);
         f.add_samples_per_pixel(2);
-        assert!(f.add_splat(&crate::film::Splat {
-            p_film: crate::math::Vec2::new(0.5, 0.5),
-            l: Rgb::splat(4.0),
-        }));
+        let pixel_box = crate::film::Filter::new(&crate::scene::FilterDesc::Box {
+            radius: crate::math::Vec2::splat(0.5),
+        });
+        assert!(f.add_splat(
+            &crate::film::Splat {
+                p_film: crate::math::Vec2::new(0.5, 0.5),
+                l: Rgb::splat(4.0),
+            },
+            &pixel_box
+        ));
         // Estimate 1 + 4 / 2 = 3 against a reference of 3: no error.
         let s = FilmStatistics::measure(&f, Some(&[Rgb::splat(3.0)]));
         assert!((s.mean.r - 3.0).abs() < 1e-6, "{:?}", s.mean);

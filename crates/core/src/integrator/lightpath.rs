@@ -1,7 +1,8 @@
 //! Light tracing (pbrt-v4 `LightPathIntegrator`; bidirectional path tracing's `t = 1`
 //! strategy): each camera sample traces one path from a light instead of from the camera,
 //! and at every vertex connects to the camera, adding the contribution as a splat at the
-//! pixel the connection lands on. The camera sample's own value is zero.
+//! film point the connection lands on (spread by the film over the pixels the filter
+//! covers, [`crate::film::Splat`]). The camera sample's own value is zero.
 //!
 //! A path starts with a light chosen by power (`pmf`) and a ray from
 //! [`crate::light::Light::sample_le`], carrying `beta = Le |cos| / (pmf pdf_pos pdf_dir)`.
@@ -54,7 +55,8 @@ fn shading_normal_correction(si: &SurfaceInteraction, wo: Vec3, wi: Vec3) -> f32
 impl LightPathIntegrator {
     /// Trace one light path with the sampler's next dimensions and report each camera
     /// connection to `splat(p_raster, value)`; the value is what the connection adds to
-    /// the pixel's sum (the film divides splat sums by the samples per pixel).
+    /// the film (which weights it by the pixel filter and divides splat sums by the samples
+    /// per pixel).
     pub fn trace(
         &self,
         scene: &Scene,

@@ -11,7 +11,7 @@ use super::{
     doubling_waves, is_cancelled, tiles_within, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats,
     Tile,
 };
-use crate::film::{Film, PixelStats, Splat};
+use crate::film::{Film, Filter, PixelStats, Splat};
 use crate::integrator::{Integrator, TraceStats};
 use crate::math::{UVec2, Vec2};
 use crate::sampling::Sampler;
@@ -308,17 +308,22 @@ impl<'s> RenderSession<'s> {
             stats.trace += r.trace;
             stats.nonfinite_samples += r.nonfinite;
         }
-        stats.dropped_splats += commit_splats(&mut self.film, &results);
+        let (film, filter, pool) = (&mut self.film, &self.scene.filter, &self.pool);
+        stats.dropped_splats += pool.install(|| commit_splats(film, &results, filter));
         self.film.add_samples_per_pixel(n);
         Ok(())
     }
 }
 
-/// Add a wave's splats to the film (in any order: the film's splat sums are exact).
-/// Returns the number dropped (outside the image, not finite or huge).
-fn commit_splats(film: &mut Film, results: &[TileResult]) -> u64 {
-    let splats = results.iter().flat_map(|r| &r.splats);
-    splats.map(|s| u64::from(!film.add_splat(s))).sum()
+/// Add a wave's splats to the film, spread over the pixels `filter` covers (in any order:
+/// the film's splat sums are exact; in parallel over bands of rows). Returns the number
+/// dropped (reaching no pixel, not finite or huge).
+fn commit_splats(film: &mut Film, results: &[TileResult], filter: &Filter) -> u64 {
+    let splats: Vec<Splat> = results.iter().flat_map(|r| r.splats.iter().copied()).collect();
+    if splats.is_empty() {
+        return 0;
+    }
+    film.add_splats(&splats, filter)
 }
 
 /// Continue the tile's accumulators (`pixels`, in tile order) with the given samples.
@@ -406,8 +411,13 @@ mod tests {
             results.reverse();
         }
         let mut film = Film::new(w, h);
-        assert_eq!(commit_splats(&mut film, &results), 0);
+        assert_eq!(commit_splats(&mut film, &results, &gaussian()), 0);
         film
+    }
+
+    /// pbrt's default filter: every splat reaches several pixels.
+    fn gaussian() -> Filter {
+        Filter::new(&crate::scene::FilterDesc::default())
     }
 
     #[test]
@@ -417,7 +427,7 @@ mod tests {
         for y in 0..h {
             for x in 0..w {
                 for s in splats_of(x, y, w, h) {
-                    assert!(reference.add_splat(&s));
+                    assert!(reference.add_splat(&s, &gaussian()));
                 }
             }
         }

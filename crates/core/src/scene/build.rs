@@ -118,6 +118,10 @@ impl SceneDescription {
                     return Err(invalid("filter sigma", format!("expected > 0, found {sigma}")));
                 }
             }
+            super::FilterDesc::Mitchell { radius, b, c } => {
+                check_positive_radius(radius.to_array())?;
+                check_finite("Mitchell filter B and C", &[b, c])?;
+            }
         }
         for (i, m) in self.materials.iter().enumerate() {
             match m {
@@ -746,6 +750,7 @@ impl Scene {
                 ),
             ));
         }
+        let filter = Filter::new(&desc.filter);
         let mut bvh = WideBvh::build(&bounds);
         let primitives = bvh.reorder_by_leaves(primitives);
         // Distant and infinite lights need the scene's size before their power is known.
@@ -760,8 +765,8 @@ impl Scene {
             light_sampler: PowerLightSampler::new(&lights),
             lights,
             infinite_lights,
-            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film)),
-            filter: Filter::new(&desc.filter),
+            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film, filter.radius())),
+            filter,
             film: desc.film,
             sampler: desc.sampler,
             integrator: desc.integrator,

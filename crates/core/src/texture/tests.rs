@@ -309,6 +309,7 @@ fn footprint_of_a_plane_facing_the_camera_is_the_pixel_size() {
             width: res,
             height: res,
         },
+        Vec2::splat(0.5),
     );
     for (d, scale, spp) in [(3.0f32, 1.0f32, 1u32), (10.0, 2.0, 1), (5.0, 1.0, 16), (5.0, 1.0, 1024)] {
         let si = plane_hit(d, scale);

@@ -332,7 +332,23 @@ impl Builder {
                     radius: Vec2::splat(fp.float("radius", 1.0)?),
                 },
                 "gaussian" => gaussian_filter(fp.float("stddev", 0.5)?),
-                _ => return Err(Self::unsupported(f, " (filters: box, tent, gaussian)")),
+                // Mitsuba's Mitchell-Netravali and Catmull-Rom cubics span 2 pixels.
+                "mitchell" => FilterDesc::Mitchell {
+                    radius: Vec2::splat(2.0),
+                    b: fp.float("B", 1.0 / 3.0)?,
+                    c: fp.float("C", 1.0 / 3.0)?,
+                },
+                "catmullrom" => FilterDesc::Mitchell {
+                    radius: Vec2::splat(2.0),
+                    b: 0.0,
+                    c: 0.5,
+                },
+                _ => {
+                    return Err(Self::unsupported(
+                        f,
+                        " (filters: box, tent, gaussian, mitchell, catmullrom)",
+                    ))
+                }
             };
             self.finish(&fp);
         }

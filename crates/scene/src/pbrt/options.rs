@@ -155,7 +155,7 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// `PixelFilter "box" | "triangle" | "gaussian"`; `mitchell` and `lanczos` fall back to
+    /// `PixelFilter "box" | "triangle" | "gaussian" | "mitchell"`; `lanczos` falls back to
     /// the default Gaussian with a warning.
     pub fn pixel_filter(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("PixelFilter", loc)?;
@@ -163,7 +163,8 @@ impl SceneBuilder {
             "box" => 0.5,
             "triangle" => 2.0,
             "gaussian" => 1.5,
-            "mitchell" | "lanczos" => {
+            "mitchell" => 2.0,
+            "lanczos" => {
                 self.warn(
                     loc,
                     format!(
@@ -183,6 +184,11 @@ impl SceneBuilder {
         self.options.filter = match kind {
             "box" => FilterDesc::Box { radius },
             "triangle" => FilterDesc::Triangle { radius },
+            "mitchell" => FilterDesc::Mitchell {
+                radius,
+                b: finite_float(params, "B", 1.0 / 3.0)?,
+                c: finite_float(params, "C", 1.0 / 3.0)?,
+            },
             _ => FilterDesc::Gaussian {
                 radius,
                 sigma: positive(params, "sigma", 0.5)?,
@@ -415,6 +421,16 @@ fn positive(params: &ParamSet, name: &str, default: f32) -> Result<f32, SceneErr
         Ok(v)
     } else {
         Err(param_error(params, name, "must be positive"))
+    }
+}
+
+/// A float parameter that must be finite.
+fn finite_float(params: &ParamSet, name: &str, default: f32) -> Result<f32, SceneError> {
+    let v = params.float(name, default)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(param_error(params, name, "must be finite"))
     }
 }
 

@@ -5,7 +5,7 @@ use crate::math::UVec2;
 use crate::sampling::chi2::{suite_seed, Chi2Test, RectGrid, SIGNIFICANCE};
 use crate::sampling::Pcg32;
 
-fn filters() -> [(&'static str, Filter); 4] {
+fn filters() -> [(&'static str, Filter); 5] {
     [
         (
             "box",
@@ -25,6 +25,14 @@ fn filters() -> [(&'static str, Filter); 4] {
             Filter::new(&FilterDesc::Gaussian {
                 radius: Vec2::new(3.0, 1.0),
                 sigma: 1.2,
+            }),
+        ),
+        (
+            "mitchell",
+            Filter::new(&FilterDesc::Mitchell {
+                radius: Vec2::new(2.0, 1.5),
+                b: 1.0 / 3.0,
+                c: 1.0 / 3.0,
             }),
         ),
     ]
@@ -118,7 +126,13 @@ fn weights_average_to_one_and_reproduce_the_filter() {
         let s = samples(&f, n);
         let mean = s.iter().map(|s| f64::from(s.weight)).sum::<f64>() / n as f64;
         assert!((mean - 1.0).abs() < 2e-3, "{name}: mean weight {mean}");
-        assert!(s.iter().all(|s| s.weight > 0.0 && s.weight.is_finite()), "{name}");
+        assert!(s.iter().all(|s| s.weight.is_finite()), "{name}");
+        // Only the Mitchell filter has negative lobes, and its weights carry their sign.
+        let negative = s.iter().filter(|s| s.weight < 0.0).count();
+        assert_eq!(negative > 0, name == "mitchell", "{name}: {negative} negative weights");
+        for s in &s {
+            assert_eq!(s.weight < 0.0, f.evaluate(s.p) < 0.0, "{name} at {}", s.p);
+        }
         let h = |p: Vec2| f64::from(p.x * p.x + 0.5 * p.y + 1.0);
         let estimate = s.iter().map(|s| f64::from(s.weight) * h(s.p)).sum::<f64>() / n as f64;
         let exact = integrate(&f, h) / f64::from(f.integral());
@@ -126,11 +140,25 @@ fn weights_average_to_one_and_reproduce_the_filter() {
     }
 }
 
+/// pbrt-v4's Mitchell filter: `m(0) = (6 - 2B) / 6` per axis at the centre, zero at the
+/// radius, negative between half the radius and the radius (for B = C = 1/3), integral
+/// `r_x r_y / 4`.
+#[test]
+fn mitchell_values() {
+    let (_, m) = &filters()[4];
+    let centre = (6.0 - 2.0 / 3.0) / 6.0;
+    assert!((m.evaluate(Vec2::ZERO) - centre * centre).abs() < 1e-6);
+    assert!(m.evaluate(Vec2::new(2.0, 0.0)).abs() < 1e-6);
+    assert!(m.evaluate(Vec2::new(1.5, 0.0)) < 0.0);
+    assert!(m.evaluate(Vec2::new(0.0, 1.0)) < 0.0);
+    assert_eq!(m.integral(), 0.75);
+}
+
 #[test]
 fn gaussian_weights_are_bounded_and_near_one() {
     // Per axis the weight is g(x) / (average of g over x's bin): within a few per cent of 1
     // where g is smooth, between 0 and 2 in the outer bins where g falls linearly to 0.
-    for (name, g) in &filters()[2..] {
+    for (name, g) in &filters()[2..4] {
         let s = samples(g, 100_000);
         let mut deviation = 0.0;
         for s in &s {

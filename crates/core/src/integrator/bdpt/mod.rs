@@ -4,7 +4,8 @@
 //! ([`subpath`]), and every prefix pair, `s` light vertices with `t` camera vertices, is
 //! connected into a complete path ([`connect`]): `s = 0` is the camera path hitting an
 //! emitter, `s = 1` next-event estimation, `t = 1` light tracing, whose contributions are
-//! splatted onto the pixel their direction falls in. Each strategy's contribution is
+//! splatted with the pixel filter around the film point their direction falls on (see
+//! [`crate::film::Splat`] for why both meet in one filtered image). Each strategy's contribution is
 //! weighted by the power heuristic over all strategies that could have produced the same
 //! path ([`mis`]), so their sum is unbiased and low in variance wherever one of them is good.
 //!

@@ -6,7 +6,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contribution::{contribution, Buffers, PathSample};
+use super::contribution::{contribution, Buffers, PathSample, Raster};
 use super::MltSettings;
 use crate::bytes::{ByteReader, ByteWriter};
 use crate::color::Rgb;
@@ -71,7 +71,7 @@ impl Chain {
         index: u64,
         start: u64,
         settings: &MltSettings,
-        resolution: Vec2,
+        raster: &Raster,
         buffers: &mut Buffers,
         trace: &mut TraceStats,
     ) -> Self {
@@ -80,7 +80,7 @@ impl Chain {
         rng.next_f32();
         let depth = (start % (u64::from(settings.max_depth) + 1)) as usize;
         let mut sampler = bootstrap_sampler(start, settings);
-        let current = contribution(ctx, &mut sampler, depth, resolution, buffers, trace);
+        let current = contribution(ctx, &mut sampler, depth, raster, buffers, trace);
         Self {
             start,
             depth,
@@ -100,7 +100,7 @@ impl Chain {
         &mut self,
         ctx: &Context<'_>,
         n: u64,
-        resolution: Vec2,
+        raster: &Raster,
         buffers: &mut Buffers,
         splats: &mut Vec<Splat>,
         trace: &mut TraceStats,
@@ -110,7 +110,7 @@ impl Chain {
             if j % CANCEL_CHECK == 0 && j > 0 && cancel.load(Ordering::Relaxed) {
                 return;
             }
-            self.mutate(ctx, resolution, buffers, splats, trace);
+            self.mutate(ctx, raster, buffers, splats, trace);
         }
     }
 
@@ -119,13 +119,13 @@ impl Chain {
     fn mutate(
         &mut self,
         ctx: &Context<'_>,
-        resolution: Vec2,
+        raster: &Raster,
         buffers: &mut Buffers,
         splats: &mut Vec<Splat>,
         trace: &mut TraceStats,
     ) {
         self.sampler.start_iteration();
-        let proposed = contribution(ctx, &mut self.sampler, self.depth, resolution, buffers, trace);
+        let proposed = contribution(ctx, &mut self.sampler, self.depth, raster, buffers, trace);
         let y_proposed = proposed.l.luminance().max(0.0);
         let accept = if self.y_current > 0.0 {
             (y_proposed / self.y_current).min(1.0)

@@ -4,6 +4,15 @@
 //! chosen by the state's first camera-stream value, and its contribution is that
 //! strategy's MIS-weighted estimate times the number of strategies (the strategy was
 //! picked with probability one over that number).
+//!
+//! The camera subpath starts at a raster position uniform over the film's sample bounds
+//! ([`crate::camera::Camera::sample_bounds`]), so that the strategies with `t >= 2` reach
+//! every path a pixel's filter sees, also beyond the image's border. The camera's
+//! densities (`pdf_we`, which the connection's MIS weights and throughput use) are those of
+//! a position uniform over the pixel bounds, `area(pixel bounds) / area(sample bounds)`
+//! times the density actually used; those strategies' contributions are therefore
+//! multiplied by the inverse ratio, [`Raster::camera_scale`]. The `t = 1` strategies find
+//! their raster position through the lens connection and keep their value.
 
 use crate::color::Rgb;
 use crate::integrator::bdpt::connect::connect;
@@ -32,6 +41,32 @@ pub struct PathSample {
     pub p_raster: Vec2,
 }
 
+/// Where camera subpaths start: a raster position uniform over the sample bounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Raster {
+    /// Corner of the sample bounds.
+    pub min: Vec2,
+    /// Size of the sample bounds.
+    pub size: Vec2,
+    /// `area(sample bounds) / area(pixel bounds)`: the factor of the contributions whose
+    /// raster position was drawn here (`t >= 2`).
+    pub camera_scale: f32,
+}
+
+impl Raster {
+    /// The sample bounds of `ctx`'s camera, for a film of `width x height` pixels.
+    #[must_use]
+    pub fn new(ctx: &Context<'_>, width: u32, height: u32) -> Self {
+        let [min, max] = ctx.scene.camera.sample_bounds();
+        let size = max - min;
+        Self {
+            min,
+            size,
+            camera_scale: size.x * size.y / (width as f32 * height as f32),
+        }
+    }
+}
+
 /// Reusable subpath storage.
 #[derive(Default)]
 pub struct Buffers {
@@ -39,13 +74,13 @@ pub struct Buffers {
     light: Vec<Vertex>,
 }
 
-/// The contribution of the sampler's current state to paths of `depth` scattering events
-/// on a film of `resolution` pixels.
+/// The contribution of the sampler's current state to paths of `depth` scattering events,
+/// the camera subpath starting in `raster`.
 pub fn contribution(
     ctx: &Context<'_>,
     sampler: &mut MltSampler,
     depth: usize,
-    resolution: Vec2,
+    raster: &Raster,
     buffers: &mut Buffers,
     stats: &mut TraceStats,
 ) -> PathSample {
@@ -58,8 +93,9 @@ pub fn contribution(
         let s = ((sampler.get_1d() * n as f32) as usize).min(n - 1);
         (s, n - s, n)
     };
-    // A camera subpath of exactly t vertices, through a raster position uniform on the film.
-    let p_raster = sampler.get_2d() * resolution;
+    // A camera subpath of exactly t vertices, through a raster position uniform on the
+    // sample bounds.
+    let p_raster = raster.min + sampler.get_2d() * raster.size;
     let none = PathSample {
         l: Rgb::BLACK,
         p_raster,
@@ -89,7 +125,8 @@ pub fn contribution(
     ) else {
         return none;
     };
-    let l = c.l * strategies as f32;
+    let scale = if t >= 2 { raster.camera_scale } else { 1.0 };
+    let l = c.l * (strategies as f32 * scale);
     if !l.is_finite() {
         return none;
     }

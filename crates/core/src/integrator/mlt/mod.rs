@@ -15,8 +15,10 @@
 //!    moving to each (the expected-value splats of Veach 1997, section 11.5), each divided
 //!    by its luminance.
 //! 3. **Image**: the splat sums times `b / mutationsperpixel`. Splats are added with their
-//!    factor `b`, and the film counts `mutationsperpixel` samples per pixel, so that
-//!    [`Film::mean_image`] is that estimate.
+//!    factor `b`, spread over the pixels the scene's filter covers (as every splat is,
+//!    [`Splat`]), and the film counts `mutationsperpixel` samples per pixel, so that
+//!    [`Film::mean_image`] is that estimate. Camera subpaths start on the film's sample
+//!    bounds ([`contribution`]).
 //!
 //! MLT is unbiased only in expectation over the normalisation `b` (and the chains' start),
 //! so its per-pixel noise is not measured (the film holds splats only). Deterministic
@@ -44,7 +46,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rayon::prelude::*;
 
 use chain::{bootstrap_sampler, choose_start, Chain};
-use contribution::{contribution, Buffers};
+use contribution::{contribution, Buffers, Raster};
 pub use state::MltState;
 use state::{chain_mutations, total_mutations, ChainSlot};
 
@@ -52,7 +54,6 @@ use super::bdpt::vertex::Context;
 use super::BdptIntegrator;
 use super::TraceStats;
 use crate::film::{Film, Splat};
-use crate::math::Vec2;
 use crate::scene::{BdptDesc, Scene};
 
 /// MLT settings (pbrt-v4's parameters).
@@ -176,8 +177,9 @@ fn context<'a>(scene: &'a Scene, settings: &MltSettings) -> Context<'a> {
     }
 }
 
-fn resolution(state: &MltState) -> Vec2 {
-    Vec2::new(state.film.width() as f32, state.film.height() as f32)
+/// Where the camera subpaths of `state`'s film start (its camera's sample bounds).
+fn raster(ctx: &Context<'_>, state: &MltState) -> Raster {
+    Raster::new(ctx, state.film.width(), state.film.height())
 }
 
 /// The bootstrap of a state not yet bootstrapped: the luminance of `bootstrapsamples x
@@ -190,7 +192,7 @@ pub fn bootstrap(scene: &Scene, settings: &MltSettings, state: &mut MltState, ca
         return trace;
     }
     let ctx = context(scene, settings);
-    let resolution = resolution(state);
+    let raster = raster(&ctx, state);
     let depths = u64::from(settings.max_depth) + 1;
     let n_bootstrap = u64::from(settings.bootstrap_samples) * depths;
     let chunks: Vec<(Vec<f32>, TraceStats)> = (0..n_bootstrap.div_ceil(BOOTSTRAP_CHUNK))
@@ -207,7 +209,7 @@ pub fn bootstrap(scene: &Scene, settings: &MltSettings, state: &mut MltState, ca
                 .map(|i| {
                     let mut sampler = bootstrap_sampler(i, settings);
                     let depth = (i % depths) as usize;
-                    let p = contribution(&ctx, &mut sampler, depth, resolution, &mut buffers, &mut stats);
+                    let p = contribution(&ctx, &mut sampler, depth, &raster, &mut buffers, &mut stats);
                     p.l.luminance().max(0.0)
                 })
                 .collect();
@@ -258,7 +260,7 @@ pub fn advance(
 ) -> TraceStats {
     let mut trace = TraceStats::default();
     let ctx = context(scene, settings);
-    let resolution = resolution(state);
+    let raster = raster(&ctx, state);
     let (width, height) = (state.film.width(), state.film.height());
     let total = total_mutations(settings, width, height);
     let chains = state.chains.len() as u64;
@@ -279,7 +281,7 @@ pub fn advance(
                 break;
             }
             if let ChainSlot::Pending(start) = *slot {
-                let chain = Chain::begin(&ctx, c as u64, start, settings, resolution, &mut buffers, &mut trace);
+                let chain = Chain::begin(&ctx, c as u64, start, settings, &raster, &mut buffers, &mut trace);
                 *slot = ChainSlot::Running(Box::new(chain));
                 running += 1;
             }
@@ -305,7 +307,7 @@ pub fn advance(
                 chain.run(
                     &ctx,
                     n,
-                    resolution,
+                    &raster,
                     &mut Buffers::default(),
                     &mut splats,
                     &mut stats,
@@ -316,12 +318,14 @@ pub fn advance(
             .collect();
         drop(work);
         for (splats, stats, mutations, accepted) in steps {
-            for s in &splats {
-                state.film.add_splat(&Splat {
+            let scaled: Vec<Splat> = splats
+                .iter()
+                .map(|s| Splat {
                     p_film: s.p_film,
                     l: s.l * b,
-                });
-            }
+                })
+                .collect();
+            state.film.add_splats(&scaled, &scene.filter);
             trace += stats;
             state.mutations += mutations;
             state.accepted += accepted;
