@@ -43,8 +43,10 @@ impl Triangle {
         Self { mesh, index, p }
     }
 
+    /// Vertex positions (world space).
     #[inline]
-    fn positions(&self) -> [Vec3; 3] {
+    #[must_use]
+    pub fn positions(&self) -> [Vec3; 3] {
         self.p
     }
 
