@@ -19,8 +19,11 @@ if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c "import mitsuba" 2>/de
     python3 -m venv "$VENV" && "$VENV/bin/pip" install -q mitsuba numpy >&2
 fi
 
-cargo build --release -q -p mcrender
-MC=target/release/mcrender
+# MC=path/to/mcrender measures that binary instead of building this tree (before/after runs).
+if [ -z "${MC:-}" ]; then
+    cargo build --release -q -p mcrender
+    MC=target/release/mcrender
+fi
 
 run_mitsuba() { # variant
     "$VENV/bin/python" "$SHARED/peers/mitsuba_render.py" --scene "$SHARED/scenes/cornell-box/mitsuba/scene_v3.xml" \

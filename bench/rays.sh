@@ -21,8 +21,11 @@ if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c "import embreex, numpy
     python3 -m venv "$VENV" && "$VENV/bin/pip" install -q numpy embreex >&2
 fi
 PY="$VENV/bin/python"
-cargo build --release -q -p mcrender
-MC=target/release/mcrender
+# MC=path/to/mcrender measures that binary instead of building this tree (before/after runs).
+if [ -z "${MC:-}" ]; then
+    cargo build --release -q -p mcrender
+    MC=target/release/mcrender
+fi
 [ -f "$DATA/shadow.bin" ] || "$PY" bench/rays_gen.py "$DATA" --triangles "$TRIS" --rays "$NRAYS" >&2
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT

@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::accel::{Bvh, WideBvh};
+use mcrender_core::accel::{Bvh, Isa, WideBvh};
 use mcrender_core::math::{Bounds3, Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 use mcrender_scene::ply::read_ply;
@@ -65,6 +65,27 @@ pub struct BenchRaysArgs {
     /// The hierarchy to trace.
     #[arg(long, value_enum, default_value_t = Accel::Wide)]
     pub accel: Accel,
+    /// Instruction set of the wide BVH's queries (default: the best this CPU has).
+    #[arg(long, value_enum)]
+    pub isa: Option<IsaArg>,
+}
+
+/// `--isa` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IsaArg {
+    /// Baseline instructions, any CPU.
+    Portable,
+    /// AVX2 and FMA (x86-64).
+    Avx2,
+}
+
+impl From<IsaArg> for Isa {
+    fn from(a: IsaArg) -> Self {
+        match a {
+            IsaArg::Portable => Isa::Portable,
+            IsaArg::Avx2 => Isa::Avx2,
+        }
+    }
 }
 
 /// Run the benchmark.
@@ -86,16 +107,21 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     let threads = pool.current_num_threads();
 
     let start = Instant::now();
-    let (accel, triangles) = pool.install(|| Traceable::build(args.accel, triangles));
+    let (mut accel, triangles) = pool.install(|| Traceable::build(args.accel, triangles));
     let build_s = start.elapsed().as_secs_f64();
+    let kind = match &mut accel {
+        Traceable::Wide(w) => {
+            if let Some(isa) = args.isa {
+                w.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
+            }
+            format!("4-wide ({})", w.isa().name())
+        }
+        Traceable::Binary(_) => "binary".to_string(),
+    };
     println!(
-        "mesh {}: {} triangles; {} BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
+        "mesh {}: {} triangles; {kind} BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
         args.mesh.display(),
         triangles.len(),
-        match args.accel {
-            Accel::Wide => "4-wide",
-            Accel::Binary => "binary",
-        },
         build_s,
         if threads == 1 { "" } else { "s" },
         triangles.len() as f64 / build_s / 1e6
@@ -152,6 +178,7 @@ impl Traceable {
             Accel::Wide => {
                 let mut bvh = WideBvh::build(&bounds);
                 let triangles = bvh.reorder_by_leaves(triangles);
+                bvh.attach_triangles(|i| Some(triangles[i as usize].positions()));
                 (Self::Wide(bvh), triangles)
             }
             Accel::Binary => (Self::Binary(Bvh::build(&bounds)), triangles),
@@ -166,10 +193,10 @@ impl Traceable {
         let any = |b: bool| if b { 0.0 } else { f32::INFINITY };
         match (self, query) {
             (Self::Wide(w), Query::Closest) => closest(
-                w.closest_hit(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)))
+                w.closest_hit_triangles(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)), |_, h| h.t)
                     .map(|(_, t)| t),
             ),
-            (Self::Wide(w), Query::Any) => any(w.any_hit(ray, t_max, blocked)),
+            (Self::Wide(w), Query::Any) => any(w.any_hit_triangles(ray, t_max, blocked)),
             (Self::Binary(b), Query::Closest) => closest(
                 b.closest_hit(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)))
                     .map(|(_, t)| t),

@@ -120,7 +120,20 @@ fn hits_agree_with_brute_force() {
         "the test rays should hit and miss: {hit_count}"
     );
 
-    for accel in ["wide", "binary"] {
+    // The wide tree in each instruction set (the portable kernels forced), and the binary one.
+    let mut configs = vec![
+        vec!["--accel", "wide"],
+        vec!["--accel", "wide", "--isa", "portable"],
+        vec!["--accel", "binary"],
+    ];
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+        configs.push(vec!["--accel", "wide", "--isa", "avx2"]);
+    } else {
+        eprintln!("NOT TESTED: --isa avx2 (this CPU has no AVX2 and FMA)");
+    }
+    for config in &configs {
+        let accel = config.join(" ");
         for threads in ["1", "2"] {
             let o = mcrender(
                 &[
@@ -133,9 +146,10 @@ fn hits_agree_with_brute_force() {
                     "2",
                     "--hits",
                     "closest.bin",
-                    "--accel",
-                    accel,
-                ],
+                ]
+                .into_iter()
+                .chain(config.iter().copied())
+                .collect::<Vec<_>>(),
                 dir.path(),
             );
             assert!(o.status.success(), "{}", stderr(&o));
@@ -159,9 +173,10 @@ fn hits_agree_with_brute_force() {
                     threads,
                     "--hits",
                     "any.bin",
-                    "--accel",
-                    accel,
-                ],
+                ]
+                .into_iter()
+                .chain(config.iter().copied())
+                .collect::<Vec<_>>(),
                 dir.path(),
             );
             assert!(o.status.success(), "{}", stderr(&o));

@@ -12,18 +12,24 @@
 //! Any-hit traversal stops at the first blocker. As [`super::Bvh`], the tree knows
 //! primitives by index and bounds only; queries take a closure testing one primitive.
 
+use super::simd::{self, Isa};
+use super::tri_block::{self, RayTriangles, TriBlock, TriangleHit};
 use super::wide_build::{self, BuildNode, MAX_DEPTH};
-use crate::math::{gamma, Bounds3, Ray};
+use crate::math::{gamma, Bounds3, Ray, Vec3};
 
 /// Children per node.
 pub const WIDTH: usize = 4;
 /// `count` of an inner child.
 const INNER: u32 = u32::MAX;
+/// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
+const BLOCK: u32 = 1 << 30;
 /// Traversal stack entries held on the call stack; a tree that may need more (deeper than
 /// about 21 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
 /// because the array is zeroed on every query (a 295-entry one, enough for any tree, was
 /// 6.6% of a Cornell box render's time in `memset`).
 const INLINE_STACK: usize = 64;
+/// The inline stack of a shallow tree (up to 5 inner levels).
+const SMALL_STACK: usize = 16;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
 const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 
@@ -37,7 +43,8 @@ pub struct WideNode {
     pub hi: [[f32; WIDTH]; 3],
     /// An inner child's node index, or a leaf's first entry in the primitive order.
     pub child: [u32; WIDTH],
-    /// A leaf's primitive count, `u32::MAX` for an inner child, 0 for an unused lane.
+    /// A leaf's primitive count, `u32::MAX` for an inner child, 0 for an unused lane; a
+    /// leaf with precomputed triangles has bit 30 set and `child` is its block's index.
     pub count: [u32; WIDTH],
 }
 
@@ -88,7 +95,8 @@ impl RayBoxes {
     /// Slab test of the ray against the node's four boxes within `(0, t_max)`: entry
     /// distances and which boxes are entered. The far distances are scaled by
     /// `1 + 2 gamma(3)` so rounding cannot make a ray miss a box it touches (pbrt-v4
-    /// `Bounds3::IntersectP`). A ray parallel to a slab with its origin on the slab's plane
+    /// `Bounds3::IntersectP`), and the near ones by `1 - 2 gamma(3)` so a `t_max` just past
+    /// a hit on a box face does not cull the box. A ray parallel to a slab with its origin on the slab's plane
     /// gives `0 x inf = NaN`, which the comparisons below ignore: that slab does not limit
     /// the ray (conservative, so flat boxes are not missed).
     #[inline(always)]
@@ -112,6 +120,9 @@ impl RayBoxes {
         }
         let mut hit = [false; WIDTH];
         for i in 0..WIDTH {
+            // The entry distance shrunk by as much: a hit on the box's face is found
+            // even when `t_max` is within rounding of it.
+            near[i] *= 1.0 - 2.0 * gamma(3);
             hit[i] = near[i] <= far[i];
         }
         (near, hit)
@@ -129,6 +140,10 @@ pub struct WideBvh {
     /// Traversal stack entries a query can need: one for the root, then at most
     /// `WIDTH - 1` more per inner level below it.
     stack_size: usize,
+    /// Precomputed leaf triangles ([`Self::attach_triangles`]).
+    blocks: Vec<TriBlock>,
+    /// The instruction set of the `*_triangles` queries.
+    isa: Isa,
 }
 
 impl WideBvh {
@@ -140,13 +155,15 @@ impl WideBvh {
             return Self::default();
         }
         let mut prims = wide_build::build_prims(bounds);
-        let tree = wide_build::build(&mut prims, 0, 0);
+        let tree = wide_build::build(&mut prims, 0, 0, wide_build::Costs::for_count(bounds.len()));
         let mut bvh = Self {
             nodes: Vec::with_capacity(bounds.len() / 2 + 1),
             prim_indices: prims.iter().map(|p| p.index).collect(),
             root: None,
             bounds: tree.bounds(),
             stack_size: 1,
+            blocks: Vec::new(),
+            isa: Isa::best(),
         };
         bvh.root = Some(bvh.collapse(&tree, 1));
         bvh
@@ -245,23 +262,134 @@ impl WideBvh {
         self.bounds
     }
 
+    /// The instruction set the `*_triangles` queries run with ([`Isa::best`] when built).
+    #[must_use]
+    pub fn isa(&self) -> Isa {
+        self.isa
+    }
+
+    /// Run the queries with `isa` (to compare or test the kernels); refused, leaving the
+    /// tree as it is, when this CPU does not support it.
+    pub fn set_isa(&mut self, isa: Isa) -> Result<(), String> {
+        if !isa.is_supported() {
+            return Err(format!("this CPU does not support the {} instruction set", isa.name()));
+        }
+        self.isa = isa;
+        Ok(())
+    }
+
+    /// Precompute the triangles of every leaf whose primitives are all triangles, so the
+    /// `*_triangles` queries test them four at a time ([`super::tri_block`]).
+    /// `triangle(prim)` gives primitive `prim`'s vertex positions, or `None` when it must be
+    /// tested by the query's closure (another shape, an alpha cut-out, a surface shadow rays
+    /// skip). Call after [`Self::reorder_by_leaves`], with the reordered primitives.
+    pub fn attach_triangles(&mut self, triangle: impl Fn(u32) -> Option<[Vec3; 3]>) {
+        let mut blocks = std::mem::take(&mut self.blocks);
+        let mut attach = |child: &mut u32, count: &mut u32| {
+            if *count == INNER || *count & BLOCK != 0 || *count == 0 {
+                return;
+            }
+            let start = *child as usize;
+            let prims = &self.prim_indices[start..start + *count as usize];
+            let tris: Option<Vec<[Vec3; 3]>> = prims.iter().map(|&p| triangle(p)).collect();
+            if let Some(tris) = tris {
+                *child = blocks.len() as u32;
+                *count |= BLOCK;
+                blocks.push(TriBlock::new(start as u32, &tris));
+            }
+        };
+        if let Some((child, count)) = &mut self.root {
+            attach(child, count);
+        }
+        for node in &mut self.nodes {
+            for i in 0..WIDTH {
+                attach(&mut node.child[i], &mut node.count[i]);
+            }
+        }
+        self.blocks = blocks;
+    }
+
+    /// Leaves whose triangles are precomputed by [`Self::attach_triangles`].
+    #[must_use]
+    pub fn triangle_blocks(&self) -> usize {
+        self.blocks.len()
+    }
+
     /// Closest hit along `ray` in `(0, t_max)`. `test(prim, ray, t_max)` intersects one
     /// primitive and returns the hit distance with any payload; `t_max` shrinks as hits are
-    /// found. A ray with a non-finite origin or direction hits nothing.
+    /// found. A ray with a non-finite origin or direction hits nothing. Leaves with
+    /// precomputed triangles are tested through `test` too, one primitive at a time (see
+    /// [`Self::closest_hit_triangles`] for the fast path).
     pub fn closest_hit<H>(
         &self,
         ray: &Ray,
-        mut t_max: f32,
-        mut test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+        t_max: f32,
+        test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
     ) -> Option<(u32, H)> {
-        let (root, root_count) = self.root?;
+        traverse_closest::<H, false>(self, ray, t_max, test, |_, _| {
+            unreachable!("leaf blocks are tested through `test` in this query")
+        })
+    }
+
+    /// [`Self::closest_hit`] with the leaves of [`Self::attach_triangles`] tested four
+    /// triangles at a time, with the tree's instruction set: `on_triangle(prim, hit)` makes
+    /// the payload of such a hit. The answers are those of `closest_hit` with `test` calling
+    /// [`crate::shape::Triangle::intersect`] on those primitives, bit for bit.
+    pub fn closest_hit_triangles<H>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+        on_triangle: impl FnMut(u32, TriangleHit) -> H,
+    ) -> Option<(u32, H)> {
+        simd::closest_hit(self, ray, t_max, test, on_triangle)
+    }
+
+    /// True when any primitive blocks `ray` within `(0, t_max)`: `test` says whether one
+    /// primitive does. Children are visited near to far and the query stops at the first
+    /// blocker. A ray with a non-finite origin or direction is blocked by nothing. Leaves
+    /// with precomputed triangles are tested through `test`, one primitive at a time.
+    pub fn any_hit(&self, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+        traverse_any::<false>(self, ray, t_max, test)
+    }
+
+    /// [`Self::any_hit`] with the leaves of [`Self::attach_triangles`] tested four
+    /// triangles at a time, with the tree's instruction set.
+    pub fn any_hit_triangles(&self, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+        simd::any_hit(self, ray, t_max, test)
+    }
+
+    /// The primitive range `(start, count)` of a leaf entry.
+    #[inline(always)]
+    fn leaf_range(&self, child: u32, count: u32) -> (usize, usize) {
+        if count & BLOCK != 0 {
+            let b = &self.blocks[child as usize];
+            (b.start as usize, b.count as usize)
+        } else {
+            (child as usize, count as usize)
+        }
+    }
+
+    /// Visit the leaves `ray` enters, nearest entry first, with `leaf` (which may shrink
+    /// `t_max`); true when it stopped the traversal.
+    #[inline(always)]
+    fn traverse(&self, ray: &Ray, mut t_max: f32, leaf: &mut impl Leaf) -> bool {
+        let Some((root, root_count)) = self.root else {
+            return false;
+        };
         if !(ray.o.is_finite() && ray.d.is_finite()) {
-            return None;
+            return false;
         }
         let r = RayBoxes::new(ray);
-        let mut inline = [Entry::default(); INLINE_STACK];
+        // Only as many entries as the tree can need are zeroed (a small scene's stack is a
+        // few dozen bytes; zeroing all 64 entries was 3% of a Cornell box render).
+        let mut small = [Entry::default(); SMALL_STACK];
+        let mut inline;
         let mut heap = Vec::new();
-        let stack: &mut [Entry] = if self.stack_size <= INLINE_STACK {
+        let stack: &mut [Entry] = if self.stack_size <= SMALL_STACK {
+            &mut small
+        } else if self.stack_size <= INLINE_STACK {
+            inline = [Entry::default(); INLINE_STACK];
             &mut inline
         } else {
             heap.resize(self.stack_size, Entry::default());
@@ -273,7 +401,6 @@ impl WideBvh {
             t_near: 0.0,
         };
         let mut sp = 1;
-        let mut best = None;
         while sp > 0 {
             sp -= 1;
             let e = stack[sp];
@@ -281,12 +408,8 @@ impl WideBvh {
                 continue;
             }
             if e.count != INNER {
-                let start = e.child as usize;
-                for &prim in &self.prim_indices[start..start + e.count as usize] {
-                    if let Some((t, h)) = test(prim, ray, t_max) {
-                        t_max = t;
-                        best = Some((prim, h));
-                    }
+                if leaf.visit(self, ray, e.child, e.count, &mut t_max) {
+                    return true;
                 }
                 continue;
             }
@@ -309,49 +432,6 @@ impl WideBvh {
                     j -= 1;
                 }
                 stack[j] = entry;
-                sp += 1;
-            }
-        }
-        best
-    }
-
-    /// True when any primitive blocks `ray` within `(0, t_max)`: `test` says whether one
-    /// primitive does. Stops at the first blocker. A ray with a non-finite origin or
-    /// direction is blocked by nothing.
-    pub fn any_hit(&self, ray: &Ray, t_max: f32, mut test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-        let Some((root, root_count)) = self.root else {
-            return false;
-        };
-        if !(ray.o.is_finite() && ray.d.is_finite()) {
-            return false;
-        }
-        let r = RayBoxes::new(ray);
-        let mut inline = [(0u32, 0u32); INLINE_STACK];
-        let mut heap = Vec::new();
-        let stack: &mut [(u32, u32)] = if self.stack_size <= INLINE_STACK {
-            &mut inline
-        } else {
-            heap.resize(self.stack_size, (0, 0));
-            &mut heap
-        };
-        stack[0] = (root, root_count);
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (child, count) = stack[sp];
-            if count != INNER {
-                let start = child as usize;
-                for &prim in &self.prim_indices[start..start + count as usize] {
-                    if test(prim, ray, t_max) {
-                        return true;
-                    }
-                }
-                continue;
-            }
-            let node = &self.nodes[child as usize];
-            let (_, hit) = r.hit4(node, t_max);
-            for (i, _) in hit.iter().enumerate().filter(|(_, &h)| h) {
-                stack[sp] = (node.child[i], node.count[i]);
                 sp += 1;
             }
         }
@@ -392,10 +472,25 @@ impl WideBvh {
             return Err(format!("deeper than {MAX_DEPTH} levels"));
         }
         if count != INNER {
+            let (start, count) = if count & BLOCK != 0 {
+                let b = self
+                    .blocks
+                    .get(child as usize)
+                    .ok_or_else(|| format!("leaf block {child} out of range"))?;
+                if count & !BLOCK != b.count {
+                    return Err(format!(
+                        "leaf block {child} has {} primitives, its lane says {}",
+                        b.count,
+                        count & !BLOCK
+                    ));
+                }
+                (b.start as usize, b.count)
+            } else {
+                (child as usize, count)
+            };
             if count == 0 || count as usize > wide_build::MAX_LEAF {
-                return Err(format!("leaf at {child} with {count} primitives"));
+                return Err(format!("leaf at {start} with {count} primitives"));
             }
-            let start = child as usize;
             let mut b = Bounds3::EMPTY;
             for &p in &self.prim_indices[start..start + count as usize] {
                 seen[p as usize] += 1;
@@ -437,6 +532,125 @@ impl WideBvh {
     }
 }
 
+/// What the traversal does at a leaf: a trait rather than a closure so that its code is
+/// always inlined, and so compiled in the instruction set of the query ([`simd`]).
+trait Leaf {
+    /// Test the leaf entry `(child, count)`, possibly shrinking `t_max`; true to stop.
+    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool;
+}
+
+/// The closest-hit leaf test; with `BLOCKS`, leaf blocks take the four-lane triangle test.
+struct Closest<H, T, F, const BLOCKS: bool> {
+    rt: RayTriangles,
+    test: T,
+    on_triangle: F,
+    best: Option<(u32, H)>,
+}
+
+impl<H, T, F, const BLOCKS: bool> Leaf for Closest<H, T, F, BLOCKS>
+where
+    T: FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+    F: FnMut(u32, TriangleHit) -> H,
+{
+    #[inline(always)]
+    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
+        if BLOCKS && count & BLOCK != 0 {
+            let block = &bvh.blocks[child as usize];
+            let c = tri_block::test(block, &self.rt, *t_max);
+            let mut mask = c.mask;
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if let Some(h) = c.hit(i, *t_max) {
+                    let prim = bvh.prim_indices[block.start as usize + i];
+                    *t_max = h.t;
+                    self.best = Some((prim, (self.on_triangle)(prim, h)));
+                }
+            }
+            return false;
+        }
+        let (start, n) = bvh.leaf_range(child, count);
+        for &prim in &bvh.prim_indices[start..start + n] {
+            if let Some((t, h)) = (self.test)(prim, ray, *t_max) {
+                *t_max = t;
+                self.best = Some((prim, h));
+            }
+        }
+        false
+    }
+}
+
+/// The any-hit leaf test; with `BLOCKS`, leaf blocks take the four-lane triangle test.
+struct Any<T, const BLOCKS: bool> {
+    rt: RayTriangles,
+    test: T,
+}
+
+impl<T: FnMut(u32, &Ray, f32) -> bool, const BLOCKS: bool> Leaf for Any<T, BLOCKS> {
+    #[inline(always)]
+    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
+        if BLOCKS && count & BLOCK != 0 {
+            return tri_block::test(&bvh.blocks[child as usize], &self.rt, *t_max).mask != 0;
+        }
+        let (start, n) = bvh.leaf_range(child, count);
+        bvh.prim_indices[start..start + n]
+            .iter()
+            .any(|&prim| (self.test)(prim, ray, *t_max))
+    }
+}
+
+/// The closest-hit query.
+#[inline(always)]
+fn traverse_closest<H, const BLOCKS: bool>(
+    bvh: &WideBvh,
+    ray: &Ray,
+    t_max: f32,
+    test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+    on_triangle: impl FnMut(u32, TriangleHit) -> H,
+) -> Option<(u32, H)> {
+    let mut leaf = Closest::<H, _, _, BLOCKS> {
+        rt: RayTriangles::new(ray),
+        test,
+        on_triangle,
+        best: None,
+    };
+    bvh.traverse(ray, t_max, &mut leaf);
+    leaf.best
+}
+
+/// The any-hit query.
+#[inline(always)]
+fn traverse_any<const BLOCKS: bool>(
+    bvh: &WideBvh,
+    ray: &Ray,
+    t_max: f32,
+    test: impl FnMut(u32, &Ray, f32) -> bool,
+) -> bool {
+    let mut leaf = Any::<_, BLOCKS> {
+        rt: RayTriangles::new(ray),
+        test,
+    };
+    bvh.traverse(ray, t_max, &mut leaf)
+}
+
+/// [`WideBvh::closest_hit_triangles`] in the caller's instruction set (see [`simd`]).
+#[inline(always)]
+pub(super) fn closest_hit_impl<H>(
+    bvh: &WideBvh,
+    ray: &Ray,
+    t_max: f32,
+    test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+    on_triangle: impl FnMut(u32, TriangleHit) -> H,
+) -> Option<(u32, H)> {
+    traverse_closest::<H, true>(bvh, ray, t_max, test, on_triangle)
+}
+
+/// [`WideBvh::any_hit_triangles`] in the caller's instruction set (see [`simd`]).
+#[inline(always)]
+pub(super) fn any_hit_impl(bvh: &WideBvh, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+    traverse_any::<true>(bvh, ray, t_max, test)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -476,6 +690,33 @@ mod tests {
             });
             assert!(visited.iter().all(|&v| v), "{n} boxes: {visited:?}");
         }
+    }
+
+    /// A tree large enough for the block cost model is valid, and its leaves fill up.
+    #[test]
+    fn large_trees_use_block_costs_and_stay_valid() {
+        let n = wide_build::BLOCK_COSTS_FROM + 100;
+        let b: Vec<Bounds3> = (0..n)
+            .map(|i| {
+                let c = Vec3::new((i % 97) as f32, (i / 97 % 89) as f32, (i / (97 * 89)) as f32);
+                Bounds3 {
+                    min: c,
+                    max: c + Vec3::splat(0.3),
+                }
+            })
+            .collect();
+        let bvh = WideBvh::build(&b);
+        bvh.check_invariants(&b).unwrap();
+        let leaves = bvh
+            .nodes()
+            .iter()
+            .flat_map(|n| n.count)
+            .filter(|&c| c != 0 && c != INNER)
+            .count();
+        assert!(
+            leaves < n / 3,
+            "{leaves} leaves for {n} primitives: leaves did not fill up"
+        );
     }
 
     #[test]

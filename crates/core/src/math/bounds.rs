@@ -127,7 +127,8 @@ impl Bounds3 {
 
     /// Slab test of a ray against the box within `(0, t_max)`, given the precomputed
     /// reciprocal direction. The far distance is scaled by `1 + 2 gamma(3)` so rounding
-    /// cannot make a ray miss a box it touches (pbrt-v4 `Bounds3::IntersectP`).
+    /// cannot make a ray miss a box it touches (pbrt-v4 `Bounds3::IntersectP`); the near
+    /// one by `1 - 2 gamma(3)`, so a `t_max` within rounding of a hit on a face keeps it.
     #[inline]
     #[must_use]
     pub fn hit(&self, o: glam::Vec3A, inv_d: glam::Vec3A, t_max: f32) -> bool {
@@ -139,7 +140,8 @@ impl Bounds3 {
         let nan = t0.is_nan_mask() | t1.is_nan_mask();
         let t_near = glam::Vec3A::select(nan, glam::Vec3A::NEG_INFINITY, t0.min(t1));
         let t_far = glam::Vec3A::select(nan, glam::Vec3A::INFINITY, t0.max(t1) * (1.0 + 2.0 * super::gamma(3)));
-        let t_enter = t_near.max_element().max(0.0);
+        // The entry shrunk alike, so a `t_max` just past a hit on a face keeps the box.
+        let t_enter = t_near.max_element().max(0.0) * (1.0 - 2.0 * super::gamma(3));
         let t_exit = t_far.min_element().min(t_max);
         t_enter <= t_exit
     }

@@ -721,7 +721,7 @@ impl Scene {
                         })
                     })
                     .collect();
-                Arc::new(ObjectGeometry::new(primitives))
+                Arc::new(ObjectGeometry::new(primitives, &materials))
             })
             .collect();
         let instances: Vec<Instance> = desc
@@ -753,6 +753,7 @@ impl Scene {
         let filter = Filter::new(&desc.filter);
         let mut bvh = WideBvh::build(&bounds);
         let primitives = bvh.reorder_by_leaves(primitives);
+        bvh.attach_triangles(|i| primitives.get(i as usize).and_then(|p| p.plain_triangle(&materials)));
         // Distant and infinite lights need the scene's size before their power is known.
         let scene_bounds = bounds.iter().fold(crate::math::Bounds3::EMPTY, |a, b| a.union(*b));
         lights.iter_mut().for_each(|l| l.preprocess(&scene_bounds));

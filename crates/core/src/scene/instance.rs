@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::Primitive;
 use crate::accel::WideBvh;
+use crate::material::Material;
 use crate::math::{gamma, Bounds3, Ray, Transform, Vec3};
 use crate::shape::{ShapeHit, SurfaceInteraction};
 
@@ -20,12 +21,13 @@ pub struct ObjectGeometry {
 }
 
 impl ObjectGeometry {
-    /// Build the bottom-level BVH over `primitives`.
+    /// Build the bottom-level BVH over `primitives`, whose materials index `materials`.
     #[must_use]
-    pub fn new(primitives: Vec<Primitive>) -> Self {
+    pub fn new(primitives: Vec<Primitive>, materials: &[Material]) -> Self {
         let bounds: Vec<Bounds3> = primitives.iter().map(|p| p.shape.bounds()).collect();
         let mut bvh = WideBvh::build(&bounds);
         let primitives = bvh.reorder_by_leaves(primitives);
+        bvh.attach_triangles(|i| primitives[i as usize].plain_triangle(materials));
         Self { bvh, primitives }
     }
 }
@@ -82,12 +84,12 @@ impl Instance {
     #[must_use]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(u32, ShapeHit)> {
         let local = self.local_ray(ray);
-        let (prim, (hit, ())) = self.object.bvh.closest_hit(&local, t_max, |i, r, t| {
-            self.object.primitives[i as usize]
-                .intersect(r, t)
-                .map(|h| (h.t, (h, ())))
-        })?;
-        Some((prim, hit))
+        self.object.bvh.closest_hit_triangles(
+            &local,
+            t_max,
+            |i, r, t| self.object.primitives[i as usize].intersect(r, t).map(|h| (h.t, h)),
+            |_, h| ShapeHit { t: h.t, data: h.b },
+        )
     }
 
     /// True when a primitive of the instance for which `blocks` holds is hit by `ray`
@@ -95,7 +97,7 @@ impl Instance {
     #[must_use]
     pub fn any_hit(&self, ray: &Ray, t_max: f32, blocks: impl Fn(&Primitive) -> bool) -> bool {
         let local = self.local_ray(ray);
-        self.object.bvh.any_hit(&local, t_max, |i, r, t| {
+        self.object.bvh.any_hit_triangles(&local, t_max, |i, r, t| {
             let p = &self.object.primitives[i as usize];
             blocks(p) && p.intersect(r, t).is_some()
         })

@@ -24,7 +24,7 @@ use crate::film::Filter;
 use crate::light::{Light, PowerLightSampler};
 use crate::material::Material;
 use crate::math::Ray;
-use crate::shape::{Interaction, Shape, SurfaceInteraction};
+use crate::shape::{Interaction, Shape, ShapeHit, SurfaceInteraction};
 use crate::texture::TextureContext;
 
 /// A shape with what it is made of.
@@ -38,6 +38,19 @@ pub struct Primitive {
     pub light: Option<u32>,
     /// Alpha cut-out texture; `None` for an opaque shape (see [`Primitive::intersect`]).
     pub alpha: Option<FloatTexture>,
+}
+
+impl Primitive {
+    /// The vertex positions when the BVH may test this primitive with the precomputed
+    /// four-lane triangle test ([`crate::accel::WideBvh::attach_triangles`]): an opaque
+    /// triangle (no alpha cut-out) that also blocks shadow rays (not an `interface`).
+    #[must_use]
+    pub fn plain_triangle(&self, materials: &[Material]) -> Option<[crate::math::Vec3; 3]> {
+        match (&self.shape, &self.alpha, materials.get(self.material as usize)) {
+            (Shape::Triangle(t), None, Some(m)) if !matches!(m, Material::Interface) => Some(t.positions()),
+            _ => None,
+        }
+    }
 }
 
 /// The closest hit of a ray: the surface interaction and what was hit.
@@ -85,15 +98,20 @@ impl Scene {
     #[must_use]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit<'_>> {
         let n = self.primitives.len() as u32;
-        let (index, (shape_hit, prim)) = self.bvh.closest_hit(ray, f32::INFINITY, |i, r, t_max| {
-            if i < n {
-                self.primitives[i as usize].intersect(r, t_max).map(|h| (h.t, (h, 0)))
-            } else {
-                self.instances[(i - n) as usize]
-                    .intersect(r, t_max)
-                    .map(|(p, h)| (h.t, (h, p)))
-            }
-        })?;
+        let (index, (shape_hit, prim)) = self.bvh.closest_hit_triangles(
+            ray,
+            f32::INFINITY,
+            |i, r, t_max| {
+                if i < n {
+                    self.primitives[i as usize].intersect(r, t_max).map(|h| (h.t, (h, 0)))
+                } else {
+                    self.instances[(i - n) as usize]
+                        .intersect(r, t_max)
+                        .map(|(p, h)| (h.t, (h, p)))
+                }
+            },
+            |_, h| (ShapeHit { t: h.t, data: h.b }, 0),
+        )?;
         if index < n {
             let primitive = &self.primitives[index as usize];
             let si = primitive.shape.interaction(ray, &shape_hit);
@@ -115,7 +133,7 @@ impl Scene {
         let n = self.primitives.len() as u32;
         let blocks =
             |p: &Primitive| !self.has_interfaces || !matches!(self.materials[p.material as usize], Material::Interface);
-        !self.bvh.any_hit(ray, t_max, |i, r, t| {
+        !self.bvh.any_hit_triangles(ray, t_max, |i, r, t| {
             if i < n {
                 let p = &self.primitives[i as usize];
                 blocks(p) && p.intersect(r, t).is_some()

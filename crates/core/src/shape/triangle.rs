@@ -43,8 +43,10 @@ impl Triangle {
         Self { mesh, index, p }
     }
 
+    /// Vertex positions (world space).
     #[inline]
-    fn positions(&self) -> [Vec3; 3] {
+    #[must_use]
+    pub fn positions(&self) -> [Vec3; 3] {
         self.p
     }
 
@@ -137,18 +139,21 @@ impl Triangle {
         Some(ShapeHit { t, data: [b0, b1, b2] })
     }
 
-    /// The interaction at barycentrics `b`.
-    fn interaction_at(&self, b: [f32; 3], wo: Vec3, t: f32) -> SurfaceInteraction {
+    /// The point, its error bound and geometric normal, the uv and the shading normal at
+    /// barycentrics `b`: what [`Self::interaction_at`] and [`Self::sample_area`] share (the
+    /// light samples need no tangents).
+    #[inline]
+    fn geometry_at(&self, b: [f32; 3]) -> (Interaction, Vec2, Vec3, [Vec2; 3]) {
         let [i0, i1, i2] = self.mesh.vertices(self.index);
         let [p0, p1, p2] = self.positions();
         let p = b[0] * p0 + b[1] * p1 + b[2] * p2;
         // Error of the barycentric interpolation (pbrt-v4 eq. 6.30).
         let p_error = gamma(7) * ((b[0] * p0).abs() + (b[1] * p1).abs() + (b[2] * p2).abs());
-        let [uv0, uv1, uv2] = match &self.mesh.uvs {
+        let uvs = match &self.mesh.uvs {
             Some(uv) => [uv[i0], uv[i1], uv[i2]],
             None => [Vec2::ZERO, Vec2::X, Vec2::ONE],
         };
-        let uv = b[0] * uv0 + b[1] * uv1 + b[2] * uv2;
+        let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
         let mut n = (p0 - p2).cross(p1 - p2).normalize();
         let ns = match &self.mesh.normals {
             Some(normals) => {
@@ -176,6 +181,14 @@ impl Triangle {
                 n
             }
         };
+        (Interaction { p, p_error, n }, uv, ns, uvs)
+    }
+
+    /// The interaction at barycentrics `b`.
+    fn interaction_at(&self, b: [f32; 3], wo: Vec3, t: f32) -> SurfaceInteraction {
+        let (intr, uv, ns, [uv0, uv1, uv2]) = self.geometry_at(b);
+        let [p0, p1, p2] = self.positions();
+        let n = intr.n;
         // dp/du from the uv parameterisation, falling back to any tangent.
         let duv02 = uv0 - uv2;
         let duv12 = uv1 - uv2;
@@ -198,7 +211,7 @@ impl Triangle {
             (dp_du, dp_dv)
         };
         SurfaceInteraction {
-            intr: Interaction { p, p_error, n },
+            intr,
             ns,
             dpdu,
             dp_du,
@@ -218,12 +231,11 @@ impl Triangle {
     /// A point uniformly distributed by area.
     #[must_use]
     pub fn sample_area(&self, u: Vec2) -> ShapeSample {
-        let b = sample_uniform_triangle(u);
-        let si = self.interaction_at(b, Vec3::ZERO, 0.0);
+        let (intr, uv, _, _) = self.geometry_at(sample_uniform_triangle(u));
         ShapeSample {
-            intr: si.intr,
+            intr,
             pdf_area: 1.0 / self.area(),
-            uv: si.uv,
+            uv,
         }
     }
 
