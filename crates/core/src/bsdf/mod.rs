@@ -9,6 +9,7 @@
 //! Conventions: `f` excludes the cosine factor; pdfs are per unit solid angle; `wo` and `wi`
 //! both point away from the surface.
 
+mod beckmann;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -30,7 +31,7 @@ pub use flags::BxdfFlags;
 pub use henyey_greenstein::{HenyeyGreenstein, PhaseSample};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf, OpaqueBase};
 pub use metallic_roughness::MetallicRoughnessBxdf;
-pub use microfacet::{roughness_to_alpha, TrowbridgeReitz};
+pub use microfacet::{roughness_to_alpha, Masking, Microfacet, MicrofacetModel};
 pub use thin_dielectric::ThinDielectricBxdf;
 pub use transport::{ReflTrans, TransportMode};
 

@@ -14,7 +14,7 @@
 
 use crate::bsdf::{
     roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf, LayeredBxdf,
-    MetallicRoughnessBxdf, ThinDielectricBxdf, TrowbridgeReitz,
+    MetallicRoughnessBxdf, Microfacet, ThinDielectricBxdf,
 };
 use crate::color::Rgb;
 use crate::sampling::hash_u64s;
@@ -190,7 +190,7 @@ impl Material {
                     Some(r) => index_from_reflectance(r.evaluate(ctx)),
                     None => (eta.evaluate(ctx), k.evaluate(ctx)),
                 };
-                let distrib = TrowbridgeReitz::new(
+                let distrib = Microfacet::trowbridge_reitz(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 );
@@ -203,7 +203,7 @@ impl Material {
                 remap_roughness,
             } => Bxdf::Dielectric(DielectricBxdf {
                 eta: *eta,
-                distrib: TrowbridgeReitz::new(
+                distrib: Microfacet::trowbridge_reitz(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 ),
@@ -274,7 +274,7 @@ impl Material {
                     top,
                     // pbrt-v4: the base's index is relative to the coat above it.
                     bottom: ConductorBxdf {
-                        distrib: TrowbridgeReitz::new(
+                        distrib: Microfacet::trowbridge_reitz(
                             alpha(conductor_u_roughness.evaluate(ctx), *remap_roughness),
                             alpha(conductor_v_roughness.evaluate(ctx), *remap_roughness),
                         ),
@@ -307,7 +307,7 @@ impl Material {
 fn coat(eta: f32, u_roughness: f32, v_roughness: f32, remap: bool) -> DielectricBxdf {
     DielectricBxdf {
         eta: if eta == 0.0 { 1.0 } else { eta },
-        distrib: TrowbridgeReitz::new(alpha(u_roughness, remap), alpha(v_roughness, remap)),
+        distrib: Microfacet::trowbridge_reitz(alpha(u_roughness, remap), alpha(v_roughness, remap)),
     }
 }
 
