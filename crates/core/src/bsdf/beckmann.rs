@@ -42,12 +42,15 @@ pub fn g1_rational(alpha_tan: f32) -> f32 {
     }
 }
 
-/// The root of an increasing `f` (with derivative `df`) in `[lo, hi]`: Newton steps,
-/// bisection when a step leaves the bracket.
-fn invert_increasing(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let mut x = 0.5 * (lo + hi);
+/// The root of an increasing `f` (with derivative `df`) in `[lo, hi]` from the guess `x`:
+/// Newton steps, bisection when a step leaves the bracket.
+fn invert_increasing(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, x: f64) -> f64 {
+    let mut x = x.clamp(lo, hi);
     for _ in 0..100 {
         let v = f(x);
+        if v == 0.0 {
+            return x;
+        }
         if v > 0.0 {
             hi = x;
         } else {
@@ -55,12 +58,12 @@ fn invert_increasing(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut lo: f6
         }
         let d = df(x);
         let newton = x - v / d;
-        let next = if d > 0.0 && newton > lo && newton < hi {
+        let next = if d > 0.0 && newton >= lo && newton <= hi {
             newton
         } else {
             0.5 * (lo + hi)
         };
-        if (next - x).abs() <= 1e-13 * (1.0 + x.abs()) || hi - lo <= 1e-13 * (1.0 + x.abs()) {
+        if (next - x).abs() <= 1e-12 * (1.0 + x.abs()) {
             return next;
         }
         x = next;
@@ -68,9 +71,46 @@ fn invert_increasing(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut lo: f6
     x
 }
 
-/// `erf^-1(z)` for `z` in (-1, 1).
+/// `erf^-1(z)` for `z` in (-1, 1): Giles' single-precision approximation ("Approximating
+/// the erfinv function", 2010) refined by Newton steps.
 fn erf_inv(z: f64) -> f64 {
-    invert_increasing(|x| libm::erf(x) - z, |x| 2.0 * INV_SQRT_PI * (-x * x).exp(), -6.0, 6.0)
+    let w = -((1.0 - z) * (1.0 + z)).ln();
+    let guess = if w < 5.0 {
+        let w = w - 2.5;
+        let p = [
+            2.810_226_36e-08,
+            3.432_739_39e-07,
+            -3.523_387_7e-06,
+            -4.391_506_54e-06,
+            2.185_808_7e-04,
+            -1.253_725_03e-03,
+            -4.177_681_64e-03,
+            2.466_407_27e-01,
+            1.501_409_41,
+        ];
+        p.iter().fold(0.0, |acc, &c| acc * w + c) * z
+    } else {
+        let w = w.sqrt() - 3.0;
+        let p = [
+            -2.002_142_57e-04,
+            1.009_505_58e-04,
+            1.349_343_22e-03,
+            -3.673_428_44e-03,
+            5.739_507_73e-03,
+            -7.622_461_3e-03,
+            9.438_870_47e-03,
+            1.001_674_06,
+            2.832_976_82,
+        ];
+        p.iter().fold(0.0, |acc, &c| acc * w + c) * z
+    };
+    invert_increasing(
+        |x| libm::erf(x) - z,
+        |x| 2.0 * INV_SQRT_PI * (-x * x).exp(),
+        -6.0,
+        6.0,
+        guess,
+    )
 }
 
 /// Sample the slopes of normals visible from a direction with `cos theta = cos_theta`
@@ -98,6 +138,8 @@ pub fn sample_visible_slopes(cos_theta: f32, u: Vec2) -> (f32, f32) {
         |x| 2.0 * INV_SQRT_PI * (-x * x).exp() * (1.0 - x * tan),
         -6.0,
         hi,
+        // The solution at normal incidence.
+        erf_inv(2.0 * u1 - 1.0).min(hi),
     );
     (x as f32, y as f32)
 }

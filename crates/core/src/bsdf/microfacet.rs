@@ -26,18 +26,20 @@ use crate::sampling::sample_uniform_disk_polar;
 pub const SMOOTH_ALPHA: f32 = 1e-3;
 
 /// The shape of the distribution of microfacet normals.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum MicrofacetModel {
     /// Trowbridge-Reitz (GGX): long tails.
+    #[default]
     TrowbridgeReitz,
     /// Beckmann: the slopes of a Gaussian random surface.
     Beckmann,
 }
 
 /// How the masking of `wo` and the shadowing of `wi` combine in the BSDF value.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Masking {
     /// `1 / (1 + Lambda(wo) + Lambda(wi))` (pbrt-v4).
+    #[default]
     HeightCorrelated,
     /// `G1(wo) G1(wi)` (Mitsuba 3; the Beckmann `G1` by the rational fit).
     Separable,
@@ -181,7 +183,8 @@ impl Microfacet {
 
     /// `G1(w)` as Mitsuba 3 evaluates it: exact for Trowbridge-Reitz, the rational fit for
     /// Beckmann.
-    fn g1_mitsuba(&self, w: Vec3) -> f32 {
+    #[must_use]
+    pub fn g1_separable(&self, w: Vec3) -> f32 {
         match self.model {
             MicrofacetModel::TrowbridgeReitz => self.g1(w),
             MicrofacetModel::Beckmann => self.alpha_tan(w).map_or(0.0, beckmann::g1_rational),
@@ -193,7 +196,7 @@ impl Microfacet {
     pub fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self.masking {
             Masking::HeightCorrelated => 1.0 / (1.0 + self.lambda(wo) + self.lambda(wi)),
-            Masking::Separable => self.g1_mitsuba(wo) * self.g1_mitsuba(wi),
+            Masking::Separable => self.g1_separable(wo) * self.g1_separable(wi),
         }
     }
 
