@@ -58,6 +58,29 @@ pub struct Microfacet {
     pub masking: Masking,
 }
 
+/// Which distribution and masking term a material's rough lobes use; the default is
+/// pbrt-v4's (Trowbridge-Reitz, height-correlated).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct MicrofacetStyle {
+    /// Trowbridge-Reitz or Beckmann.
+    pub model: MicrofacetModel,
+    /// The masking-shadowing term.
+    pub masking: Masking,
+}
+
+impl MicrofacetStyle {
+    /// The distribution of this style with the given roughness.
+    #[must_use]
+    pub const fn distribution(self, alpha_x: f32, alpha_y: f32) -> Microfacet {
+        Microfacet {
+            model: self.model,
+            alpha_x,
+            alpha_y,
+            masking: self.masking,
+        }
+    }
+}
+
 /// pbrt-v4's map from a user's "roughness" to `alpha`: `sqrt(roughness)`.
 #[inline]
 #[must_use]

@@ -33,7 +33,7 @@ pub use flags::BxdfFlags;
 pub use henyey_greenstein::{HenyeyGreenstein, PhaseSample};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf, OpaqueBase};
 pub use metallic_roughness::MetallicRoughnessBxdf;
-pub use microfacet::{roughness_to_alpha, Masking, Microfacet, MicrofacetModel};
+pub use microfacet::{roughness_to_alpha, Masking, Microfacet, MicrofacetModel, MicrofacetStyle};
 pub use plastic::PlasticBxdf;
 pub use plastic_coat::PlasticCoat;
 pub use thin_dielectric::ThinDielectricBxdf;

@@ -14,7 +14,7 @@
 
 use crate::bsdf::{
     roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf, LayeredBxdf,
-    MetallicRoughnessBxdf, Microfacet, ThinDielectricBxdf,
+    MetallicRoughnessBxdf, Microfacet, PlasticBxdf, ThinDielectricBxdf,
 };
 use crate::color::Rgb;
 use crate::sampling::hash_u64s;
@@ -164,6 +164,11 @@ impl Material {
                 metallic,
                 roughness,
             } => !(base_color.is_constant() && metallic.is_constant() && roughness.is_constant()),
+            Self::Plastic {
+                diffuse_reflectance,
+                specular_reflectance,
+                ..
+            } => !(diffuse_reflectance.is_constant() && specular_reflectance.is_constant()),
             Self::Mix { amount, .. } => !amount.is_constant(),
             Self::Interface => false,
         }
@@ -185,12 +190,13 @@ impl Material {
                 u_roughness,
                 v_roughness,
                 remap_roughness,
+                microfacet,
             } => {
                 let (eta, k) = match reflectance {
                     Some(r) => index_from_reflectance(r.evaluate(ctx)),
                     None => (eta.evaluate(ctx), k.evaluate(ctx)),
                 };
-                let distrib = Microfacet::trowbridge_reitz(
+                let distrib = microfacet.distribution(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 );
@@ -201,9 +207,10 @@ impl Material {
                 u_roughness,
                 v_roughness,
                 remap_roughness,
+                microfacet,
             } => Bxdf::Dielectric(DielectricBxdf {
                 eta: *eta,
-                distrib: Microfacet::trowbridge_reitz(
+                distrib: microfacet.distribution(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 ),
@@ -297,6 +304,19 @@ impl Material {
                 metallic.evaluate(ctx),
                 roughness.evaluate(ctx),
             )),
+            Self::Plastic {
+                diffuse_reflectance,
+                specular_reflectance,
+                nonlinear,
+                specular_sampling_weight,
+                coat,
+            } => Bxdf::Plastic(PlasticBxdf {
+                coat: *coat,
+                diffuse: diffuse_reflectance.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
+                specular: specular_reflectance.evaluate(ctx).map(|v| v.max(0.0)),
+                nonlinear: *nonlinear,
+                specular_sampling_weight: specular_sampling_weight.clamp(0.0, 1.0),
+            }),
             Self::Mix { .. } | Self::Interface => return None,
         };
         Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
@@ -350,6 +370,7 @@ mod tests {
             u_roughness: 0.0.into(),
             v_roughness: 0.0.into(),
             remap_roughness: true,
+            microfacet: Default::default(),
         });
         let Bxdf::Conductor(ConductorBxdf { eta, k, .. }) = bxdf(&m) else {
             panic!("{m:?}")
@@ -370,6 +391,7 @@ mod tests {
                 u_roughness: 0.25.into(),
                 v_roughness: 0.0.into(),
                 remap_roughness: remap,
+                microfacet: Default::default(),
             });
             let Bxdf::Dielectric(DielectricBxdf { distrib, .. }) = bxdf(&m) else {
                 panic!()

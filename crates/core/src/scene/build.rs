@@ -233,6 +233,29 @@ impl SceneDescription {
                         &float_constants(&[metallic, roughness]),
                     )?;
                 }
+                MaterialDesc::Plastic {
+                    diffuse_reflectance,
+                    specular_reflectance,
+                    specular_sampling_weight,
+                    coat,
+                    ..
+                } => {
+                    check_non_negative(
+                        &format!("diffuse reflectance of material {i}"),
+                        &rgb_constant(diffuse_reflectance),
+                    )?;
+                    check_non_negative(
+                        &format!("specular reflectance of material {i}"),
+                        &rgb_constant(specular_reflectance),
+                    )?;
+                    check_positive_eta(i, coat.eta())?;
+                    if !(0.0..=1.0).contains(specular_sampling_weight) {
+                        return Err(invalid(
+                            format!("specular sampling weight of material {i}"),
+                            format!("expected in [0, 1], found {specular_sampling_weight}"),
+                        ));
+                    }
+                }
                 MaterialDesc::Interface => {}
             }
         }

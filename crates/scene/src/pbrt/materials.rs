@@ -189,6 +189,7 @@ impl SceneBuilder {
                     u_roughness,
                     v_roughness,
                     remap_roughness,
+                    microfacet: Default::default(),
                 })
             }
             "dielectric" => {
@@ -201,6 +202,7 @@ impl SceneBuilder {
                     u_roughness,
                     v_roughness,
                     remap_roughness,
+                    microfacet: Default::default(),
                 })
             }
             "thindielectric" => {
