@@ -29,7 +29,10 @@ use mcrender_scene::{load_with, LoadOptions};
 const EXPECTED_PASS: &[&str] = &[
     "test_arealight_path",
     "test_constant_path",
+    "test_envmap_path",
     "test_pointlight_path",
+    "test_roughplastic_linear_path",
+    "test_textured_diffuse_path",
     "test_directional_direct",
     "test_instancing_path",
     "test_texture_interp_direct",
