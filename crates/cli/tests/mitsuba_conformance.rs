@@ -30,6 +30,7 @@ const EXPECTED_PASS: &[&str] = &[
     "test_arealight_path",
     "test_constant_path",
     "test_envmap_path",
+    "test_normalmap_identity_roughconductor_path",
     "test_pointlight_path",
     "test_roughplastic_linear_path",
     "test_textured_diffuse_path",

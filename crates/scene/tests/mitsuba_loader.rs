@@ -342,3 +342,18 @@ fn messages_are_one_short_line_without_control_characters() {
         }
     }
 }
+
+#[test]
+fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
+    let m = materials(&[
+        "<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture><bsdf type=\"diffuse\"/></bsdf>",
+    ]);
+    let MaterialDesc::NormalMap { normal_map, .. } = &m[0] else {
+        panic!("{m:?}")
+    };
+    assert_eq!(normal_map.constant(), Some(Rgb::new(0.5, 0.5, 1.0)));
+    let e = err("<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf>");
+    assert!(e.message.contains("normalmap"), "{e}");
+    let e = err("<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture></bsdf>");
+    assert!(e.message.contains("nested bsdf"), "{e}");
+}

@@ -256,6 +256,14 @@ impl SceneDescription {
                         ));
                     }
                 }
+                MaterialDesc::NormalMap { material, .. } => {
+                    if *material as usize >= self.materials.len() {
+                        return Err(invalid(
+                            format!("material {i}"),
+                            format!("normal-maps material index {material}, out of range"),
+                        ));
+                    }
+                }
                 MaterialDesc::Interface => {}
             }
         }
@@ -610,6 +618,7 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
         while let Some(&mut (m, ref mut next)) = stack.last_mut() {
             let children: &[MaterialId] = match &materials[m] {
                 MaterialDesc::Mix { materials, .. } => materials,
+                MaterialDesc::NormalMap { material, .. } => std::slice::from_ref(material),
                 _ => &[],
             };
             if let Some(&c) = children.get(*next) {
@@ -623,7 +632,7 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
                     1 => {
                         return Err(invalid(
                             format!("material {c}"),
-                            "a mix material contains itself (directly or through other mixes)",
+                            "a mix or normal-map material contains itself (directly or through others)",
                         ))
                     }
                     _ => {}
@@ -662,6 +671,7 @@ impl Scene {
         desc.validate()?;
         let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
         let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
+        let has_normal_maps = materials.iter().any(|m| matches!(m, Material::NormalMap { .. }));
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         // Which description shape each primitive comes from (for messages).
@@ -790,6 +800,7 @@ impl Scene {
             integrator: desc.integrator,
             instances,
             has_interfaces,
+            has_normal_maps,
             bvh,
         })
     }

@@ -524,6 +524,18 @@ pub enum MaterialDesc {
         /// The coat: index of refraction and roughness, with its precomputed tables.
         coat: PlasticCoat,
     },
+    /// Another material with its shading normal replaced by a normal map (Mitsuba 3's
+    /// `normalmap`): the map's RGB `c` gives the normal `normalize(2 c - 1)` in the shading
+    /// frame of the surface (x along the tangent, z the shading normal), and the old tangent
+    /// projected on the new tangent plane is the new tangent. Applied where rays hit the
+    /// surface (`Scene::intersect`), so integrators see the perturbed normal (their cosine
+    /// is taken with it, as Mitsuba's BSDFs take theirs in the perturbed frame).
+    NormalMap {
+        /// The material shaded with the new frame (no cycles through normal maps).
+        material: MaterialId,
+        /// Linear RGB in [0, 1] per texel (a `raw` texture).
+        normal_map: RgbTexture,
+    },
     /// One of two materials per shading point (pbrt `mix`): the second with probability
     /// `amount`, chosen by a hash of the point and `wo`, so deterministically.
     Mix {

@@ -17,8 +17,12 @@
 //!   `eta`/`k`);
 //! * `mask` (`opacity`, default 0.5) -> the shape's alpha cut-out around the nested BSDF.
 //!
+//! * `normalmap` (`normalmap`: a raw texture, e.g. `bitmap` with `raw` or `rawconstant`)
+//!   -> the nested BSDF with Mitsuba's perturbed shading frame
+//!   (`MaterialDesc::NormalMap`).
+//!
 //! Not rendered (errors naming the plugin): `principled`, `principledthin`, `bumpmap`,
-//! `normalmap`, `blendbsdf`, `pplastic`, `hair`, `measured`, `polarizer`, `retarder`,
+//! `blendbsdf`, `pplastic`, `hair`, `measured`, `polarizer`, `retarder`,
 //! `circular`, `null`.
 //!
 //! Differences kept: Mitsuba's `diffuse` is black seen from behind (mcrender's reflects on
@@ -45,7 +49,7 @@ impl Builder {
                 let reflectance = self.rgb_param(&mut p, "reflectance", Rgb::splat(0.5), false)?;
                 self.plain(MaterialDesc::Diffuse { reflectance })
             }
-            "twosided" | "mask" => {
+            "twosided" | "mask" | "normalmap" => {
                 let inner: Vec<_> = p.nested("bsdf");
                 let mut surfaces = Vec::new();
                 for b in inner {
@@ -61,8 +65,8 @@ impl Builder {
                 p.use_refs();
                 let inner = match surfaces.as_slice() {
                     [s] => s.clone(),
-                    [] if kind == "mask" => {
-                        return Err(SceneError::syntax(&el.loc, "a mask needs a nested bsdf"));
+                    [] if kind != "twosided" => {
+                        return Err(SceneError::syntax(&el.loc, format!("a {kind} needs a nested bsdf")));
                     }
                     _ => {
                         return Err(SceneError::unsupported(
@@ -75,7 +79,19 @@ impl Builder {
                         ))
                     }
                 };
-                if kind == "mask" {
+                if kind == "normalmap" {
+                    if !p.has("normalmap") {
+                        return Err(SceneError::syntax(&el.loc, "a normalmap needs a \"normalmap\" texture"));
+                    }
+                    let normal_map = self.rgb_param(&mut p, "normalmap", Rgb::new(0.5, 0.5, 1.0), false)?;
+                    Surface {
+                        material: self.add_material(MaterialDesc::NormalMap {
+                            material: inner.material,
+                            normal_map,
+                        }),
+                        alpha: inner.alpha,
+                    }
+                } else if kind == "mask" {
                     if inner.alpha.is_some() {
                         return Err(SceneError::unsupported(&el.loc, "a mask inside a mask"));
                     }
@@ -195,8 +211,8 @@ impl Builder {
                     coat,
                 })
             }
-            "principled" | "principledthin" | "bumpmap" | "normalmap" | "blendbsdf" | "pplastic" | "hair"
-            | "measured" | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
+            "principled" | "principledthin" | "bumpmap" | "blendbsdf" | "pplastic" | "hair" | "measured"
+            | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
             _ => return Err(Self::unsupported(el, " (unknown BSDF plugin)")),
         };
         self.name(el, Named::Bsdf(surface.clone()));
