@@ -12,7 +12,8 @@
 //!   `eta > 1`, 128 otherwise), as Mitsuba's `eval_transmittance`/`eval_reflectance`.
 //!
 //! The rough tables take a few million microfacet samples; they are computed in parallel
-//! and remembered per (distribution, index) for the life of the process.
+//! and remembered per (distribution, index) for the life of the process, which lets the
+//! coat refer to its table by a `&'static` and stay a small `Copy` value.
 
 use super::fresnel::{fr_dielectric, reflect, refract};
 use super::microfacet::Microfacet;
@@ -39,7 +40,7 @@ enum CoatKind {
     },
     Rough {
         distrib: Microfacet,
-        transmittance: [f32; TABLE_SIZE],
+        transmittance: &'static [f32; TABLE_SIZE],
         internal_reflectance: f32,
     },
 }
@@ -110,10 +111,13 @@ impl PlasticCoat {
                 (t as f32, r * f64::from(mu))
             })
             .collect();
-        let mut transmittance = [0.0; TABLE_SIZE];
+        let mut transmittance = Box::new([0.0; TABLE_SIZE]);
         for (t, row) in transmittance.iter_mut().zip(&rows) {
             *t = row.0;
         }
+        // Kept for the life of the process with the cache entry of `rough` (one per
+        // distinct distribution and index).
+        let transmittance: &'static [f32; TABLE_SIZE] = Box::leak(transmittance);
         let sum: f64 = rows.iter().map(|r| r.1).sum();
         Self {
             eta,
