@@ -250,12 +250,19 @@ impl Builder {
             }
         }
         let _ = p.bool("sample_visible", true)?;
-        if p.has("alpha_u") || p.has("alpha_v") {
-            Ok((p.float("alpha_u", 0.1)?, p.float("alpha_v", 0.1)?, style))
+        let (u, v) = if p.has("alpha_u") || p.has("alpha_v") {
+            (p.float("alpha_u", 0.1)?, p.float("alpha_v", 0.1)?)
         } else {
             let a = p.float("alpha", 0.1)?;
-            Ok((a, a, style))
+            (a, a)
+        };
+        if !(u.is_finite() && v.is_finite() && u >= 0.0 && v >= 0.0) {
+            return Err(SceneError::invalid(
+                &p.el.loc,
+                format!("{}: alpha must be finite and >= 0, found ({u}, {v})", p.el.describe()),
+            ));
         }
+        Ok((u, v, style))
     }
 }
 
