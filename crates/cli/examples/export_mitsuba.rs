@@ -35,6 +35,7 @@ fn material_json(m: &MaterialDesc) -> Result<String> {
             u_roughness,
             v_roughness,
             remap_roughness,
+            ..
         } => {
             let alpha = |r: f32| if *remap_roughness { r.max(0.0).sqrt() } else { r };
             format!(

@@ -227,6 +227,7 @@ impl Converter {
                     u_roughness: 0.0.into(),
                     v_roughness: 0.0.into(),
                     remap_roughness: false,
+                    microfacet: Default::default(),
                 },
                 light,
             ));
@@ -252,6 +253,7 @@ impl Converter {
                 u_roughness: alpha.into(),
                 v_roughness: alpha.into(),
                 remap_roughness: false,
+                microfacet: Default::default(),
             }
         } else {
             MaterialDesc::CoatedDiffuse {

@@ -338,7 +338,8 @@ fn textures_factors_emission_and_transmission_become_materials() {
             eta: 1.33,
             u_roughness: 0.25.into(),
             v_roughness: 0.25.into(),
-            remap_roughness: false
+            remap_roughness: false,
+            microfacet: Default::default(),
         }
     );
     let w = s.warnings.join("\n");

@@ -134,10 +134,114 @@ fn unknown_plugin_names_element_and_position() {
     assert_eq!(e.kind, SceneErrorKind::Unsupported);
     assert_eq!((e.location.line, e.location.column), (2, 1), "{e}");
     assert!(e.message.contains("glitter"), "{e}");
-    let e = err("<shape type=\"sphere\">\n  <bsdf type=\"roughconductor\"/>\n</shape>");
+    let e = err("<shape type=\"sphere\">\n  <bsdf type=\"hair\"/>\n</shape>");
     assert_eq!(e.kind, SceneErrorKind::Unsupported);
-    assert!(e.message.contains("Beckmann"), "{e}");
+    assert!(e.message.contains("hair"), "{e}");
     assert_eq!(e.location.line, 3, "{e}");
+    let e = err("<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"phong\"/></bsdf>");
+    assert_eq!(e.kind, SceneErrorKind::Syntax);
+    assert!(e.message.contains("phong"), "{e}");
+    let e = err("<bsdf type=\"roughplastic\"><float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.2\"/></bsdf>");
+    assert!(e.message.contains("anisotropic"), "{e}");
+}
+
+/// The materials of a scene made of `bsdfs`, one sphere each.
+fn materials(bsdfs: &[&str]) -> Vec<MaterialDesc> {
+    let dir = tempfile::tempdir().unwrap();
+    let body: String = bsdfs
+        .iter()
+        .map(|b| format!("<shape type=\"sphere\">{b}</shape>\n"))
+        .collect();
+    write(dir.path(), "m.xml", &scene(&body));
+    let l = load(&dir.path().join("m.xml")).unwrap_or_else(|e| panic!("{e}"));
+    let d = &l.description;
+    d.shapes
+        .iter()
+        .map(|s| d.materials[s.material as usize].clone())
+        .collect()
+}
+
+#[test]
+fn microfacet_plugins_default_to_beckmann_with_separable_masking() {
+    use mcrender_core::bsdf::{Masking, MicrofacetModel};
+    let m = materials(&[
+        "<bsdf type=\"roughconductor\"/>",
+        "<bsdf type=\"roughdielectric\"><string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.3\"/></bsdf>",
+    ]);
+    let MaterialDesc::Conductor {
+        u_roughness,
+        microfacet,
+        ..
+    } = &m[0]
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!(
+        (u_roughness.constant(), microfacet.model, microfacet.masking),
+        (Some(0.1), MicrofacetModel::Beckmann, Masking::Separable)
+    );
+    let MaterialDesc::Dielectric {
+        v_roughness,
+        microfacet,
+        ..
+    } = &m[1]
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!(
+        (v_roughness.constant(), microfacet.model),
+        (Some(0.3), MicrofacetModel::TrowbridgeReitz)
+    );
+}
+
+#[test]
+fn plastics_are_mitsubas_model_with_its_defaults() {
+    use mcrender_core::bsdf::MicrofacetModel;
+    let m = materials(&[
+        "<bsdf type=\"plastic\"/>",
+        "<bsdf type=\"plastic\"><rgb name=\"diffuse_reflectance\" value=\"0.1, 0.27, 0.36\"/><float name=\"int_ior\" value=\"1.9\"/><boolean name=\"nonlinear\" value=\"true\"/></bsdf>",
+        "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.4\"/><string name=\"int_ior\" value=\"bk7\"/></bsdf>",
+        "<bsdf type=\"roughplastic\"/>",
+    ]);
+    let MaterialDesc::Plastic {
+        diffuse_reflectance,
+        specular_reflectance,
+        nonlinear,
+        specular_sampling_weight,
+        coat,
+    } = &m[0]
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!(diffuse_reflectance.constant(), Some(Rgb::splat(0.5)));
+    assert_eq!(specular_reflectance.constant(), Some(Rgb::splat(1.0)));
+    assert!(!nonlinear && coat.distribution().is_none());
+    assert!((specular_sampling_weight - 1.0 / 1.5).abs() < 1e-6);
+    // Polypropylene in air.
+    assert!((coat.eta() - 1.49 / 1.000_277).abs() < 1e-6, "{}", coat.eta());
+    let MaterialDesc::Plastic {
+        nonlinear,
+        specular_sampling_weight,
+        coat,
+        ..
+    } = &m[1]
+    else {
+        panic!()
+    };
+    assert!(*nonlinear && (coat.eta() - 1.9 / 1.000_277).abs() < 1e-6);
+    let mean = (0.1 + 0.27 + 0.36) / 3.0;
+    assert!((specular_sampling_weight - 1.0 / (1.0 + mean)).abs() < 1e-6);
+    let MaterialDesc::Plastic { coat, .. } = &m[2] else {
+        panic!()
+    };
+    let d = coat.distribution().unwrap();
+    assert_eq!((d.model, d.alpha_x), (MicrofacetModel::TrowbridgeReitz, 0.4));
+    assert!((coat.eta() - 1.5046 / 1.000_277).abs() < 1e-5);
+    let MaterialDesc::Plastic { coat, .. } = &m[3] else {
+        panic!()
+    };
+    let d = coat.distribution().unwrap();
+    assert_eq!((d.model, d.alpha_x), (MicrofacetModel::Beckmann, 0.1));
 }
 
 #[test]
@@ -260,4 +364,19 @@ fn mitsuba_obj_with_a_one_value_mtl_colour_does_not_panic() {
         let l = load(&main).unwrap_or_else(|e| panic!("{mtl:?}: {e}"));
         assert_eq!(l.description.shapes.len(), 1, "{mtl:?}");
     }
+}
+
+#[test]
+fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
+    let m = materials(&[
+        "<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture><bsdf type=\"diffuse\"/></bsdf>",
+    ]);
+    let MaterialDesc::NormalMap { normal_map, .. } = &m[0] else {
+        panic!("{m:?}")
+    };
+    assert_eq!(normal_map.constant(), Some(Rgb::new(0.5, 0.5, 1.0)));
+    let e = err("<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf>");
+    assert!(e.message.contains("normalmap"), "{e}");
+    let e = err("<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture></bsdf>");
+    assert!(e.message.contains("nested bsdf"), "{e}");
 }

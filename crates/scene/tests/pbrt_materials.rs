@@ -32,6 +32,7 @@ fn conductor_parts(m: &MaterialDesc) -> (Rgb, Rgb, Option<Rgb>, f32, f32, bool) 
             u_roughness,
             v_roughness,
             remap_roughness,
+            ..
         } => (
             eta.constant().unwrap(),
             k.constant().unwrap(),
@@ -200,7 +201,8 @@ fn dielectric_roughness() {
             eta: 1.5,
             u_roughness: 0.1.into(),
             v_roughness: 0.4.into(),
-            remap_roughness: true
+            remap_roughness: true,
+            microfacet: Default::default(),
         }
     );
     assert!(warnings.is_empty());

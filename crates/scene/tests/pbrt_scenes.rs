@@ -181,6 +181,7 @@ fn veach_mis_loads_with_its_conductor_plates() {
                 u_roughness,
                 v_roughness,
                 remap_roughness: false,
+                ..
             } => {
                 assert_eq!(eta, Rgb::new(0.200438, 0.924033, 1.102212).into());
                 assert_eq!(k, Rgb::new(3.912949, 2.452848, 2.142188).into());

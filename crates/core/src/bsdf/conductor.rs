@@ -5,7 +5,7 @@
 //! a complex index of refraction per RGB channel. Reflects on both sides.
 
 use super::fresnel::{fr_complex, reflect};
-use super::microfacet::TrowbridgeReitz;
+use super::microfacet::Microfacet;
 use super::{same_hemisphere, BsdfSample, BxdfFlags};
 use crate::color::Rgb;
 use crate::math::{Vec2, Vec3};
@@ -14,7 +14,7 @@ use crate::math::{Vec2, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConductorBxdf {
     /// Microfacet roughness; smooth below [`super::microfacet::SMOOTH_ALPHA`].
-    pub distrib: TrowbridgeReitz,
+    pub distrib: Microfacet,
     /// Real part of the relative index of refraction, per channel.
     pub eta: Rgb,
     /// Absorption coefficient (imaginary part of the index), per channel.

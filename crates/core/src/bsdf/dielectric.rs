@@ -14,7 +14,7 @@
 //! transmission and the sampled `eta` is `eta'`, for the integrator's Russian roulette.
 
 use super::fresnel::{fr_dielectric, reflect, refract};
-use super::microfacet::TrowbridgeReitz;
+use super::microfacet::Microfacet;
 use super::{same_hemisphere, BsdfSample, BxdfFlags, ReflTrans, TransportMode};
 use crate::color::Rgb;
 use crate::math::{sqr, Vec2, Vec3};
@@ -25,7 +25,7 @@ pub struct DielectricBxdf {
     /// Relative index of refraction, inside over outside.
     pub eta: f32,
     /// Microfacet roughness.
-    pub distrib: TrowbridgeReitz,
+    pub distrib: Microfacet,
 }
 
 impl DielectricBxdf {

@@ -7,14 +7,14 @@
 
 use super::*;
 use crate::bsdf::fresnel::fr_dielectric;
-use crate::bsdf::{Bxdf, TrowbridgeReitz};
+use crate::bsdf::{Bxdf, Microfacet};
 use crate::math::Vec3;
 use crate::sampling::{sample_uniform_hemisphere, uniform_hemisphere_pdf};
 
 fn coat(eta: f32, alpha: f32) -> DielectricBxdf {
     DielectricBxdf {
         eta,
-        distrib: TrowbridgeReitz::new(alpha, alpha),
+        distrib: Microfacet::trowbridge_reitz(alpha, alpha),
     }
 }
 
@@ -35,7 +35,7 @@ fn coated_conductor(r: f32, coat_alpha: f32, base_alpha: f32, thickness: f32, al
     Bxdf::CoatedConductor(LayeredBxdf {
         top: coat(1.5, coat_alpha),
         bottom: ConductorBxdf {
-            distrib: TrowbridgeReitz::new(base_alpha, base_alpha),
+            distrib: Microfacet::trowbridge_reitz(base_alpha, base_alpha),
             eta: Rgb::WHITE,
             k: Rgb::splat(2.0 * r.sqrt() / (1.0 - r).sqrt()),
         },

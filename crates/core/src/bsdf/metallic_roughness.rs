@@ -23,7 +23,7 @@
 //! discrete probability `p_s`). Reflects on both sides, as the other opaque lobes.
 
 use super::fresnel::reflect;
-use super::microfacet::TrowbridgeReitz;
+use super::microfacet::Microfacet;
 use super::{same_hemisphere, BsdfSample, BxdfFlags};
 use crate::color::Rgb;
 use crate::math::{Vec2, Vec3, INV_PI};
@@ -40,7 +40,7 @@ pub struct MetallicRoughnessBxdf {
     /// Metalness in [0, 1].
     pub metallic: f32,
     /// GGX distribution with `alpha = roughness^2` (isotropic).
-    pub distrib: TrowbridgeReitz,
+    pub distrib: Microfacet,
 }
 
 /// `(1 - cos)^5`, Schlick's weight.
@@ -58,7 +58,7 @@ impl MetallicRoughnessBxdf {
         Self {
             base_color: base_color.map(|v| v.clamp(0.0, 1.0)),
             metallic: metallic.clamp(0.0, 1.0),
-            distrib: TrowbridgeReitz::new(r * r, r * r),
+            distrib: Microfacet::trowbridge_reitz(r * r, r * r),
         }
     }
 

@@ -9,6 +9,7 @@
 //! Conventions: `f` excludes the cosine factor; pdfs are per unit solid angle; `wo` and `wi`
 //! both point away from the surface.
 
+mod beckmann;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -19,6 +20,8 @@ mod henyey_greenstein;
 mod layered;
 mod metallic_roughness;
 pub mod microfacet;
+mod plastic;
+pub mod plastic_coat;
 mod thin_dielectric;
 mod transport;
 
@@ -30,7 +33,9 @@ pub use flags::BxdfFlags;
 pub use henyey_greenstein::{HenyeyGreenstein, PhaseSample};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf, OpaqueBase};
 pub use metallic_roughness::MetallicRoughnessBxdf;
-pub use microfacet::{roughness_to_alpha, TrowbridgeReitz};
+pub use microfacet::{roughness_to_alpha, Masking, Microfacet, MicrofacetModel, MicrofacetStyle};
+pub use plastic::PlasticBxdf;
+pub use plastic_coat::PlasticCoat;
 pub use thin_dielectric::ThinDielectricBxdf;
 pub use transport::{ReflTrans, TransportMode};
 
@@ -77,6 +82,8 @@ pub enum Bxdf {
     CoatedConductor(CoatedConductorBxdf),
     /// glTF 2.0's metallic-roughness BRDF.
     MetallicRoughness(MetallicRoughnessBxdf),
+    /// Mitsuba 3's plastic: a smooth or rough coat over a diffuse base.
+    Plastic(PlasticBxdf),
 }
 
 macro_rules! dispatch {
@@ -90,6 +97,7 @@ macro_rules! dispatch {
             Bxdf::CoatedDiffuse($b) => $e,
             Bxdf::CoatedConductor($b) => $e,
             Bxdf::MetallicRoughness($b) => $e,
+            Bxdf::Plastic($b) => $e,
         }
     };
 }
@@ -179,7 +187,8 @@ impl Bsdf {
                 l.bottom.distrib.regularize();
             }
             Bxdf::MetallicRoughness(m) => m.distrib.regularize(),
-            Bxdf::Diffuse(_) | Bxdf::ThinDielectric(_) | Bxdf::DiffuseTransmission(_) => {}
+            // (A rough plastic's coat tables belong to its roughness: left as it is.)
+            Bxdf::Diffuse(_) | Bxdf::ThinDielectric(_) | Bxdf::DiffuseTransmission(_) | Bxdf::Plastic(_) => {}
         }
     }
 

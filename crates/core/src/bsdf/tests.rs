@@ -262,7 +262,7 @@ const ALPHAS: [(f32, f32); 4] = [(0.05, 0.05), (0.2, 0.2), (0.6, 0.6), (0.1, 0.5
 
 fn conductor(ax: f32, ay: f32, eta: Rgb, k: Rgb) -> Bxdf {
     Bxdf::Conductor(ConductorBxdf {
-        distrib: TrowbridgeReitz::new(ax, ay),
+        distrib: Microfacet::trowbridge_reitz(ax, ay),
         eta,
         k,
     })
@@ -346,7 +346,7 @@ fn smooth_conductor_is_a_fresnel_weighted_mirror() {
 fn dielectric(ax: f32, ay: f32, eta: f32) -> Bxdf {
     Bxdf::Dielectric(DielectricBxdf {
         eta,
-        distrib: TrowbridgeReitz::new(ax, ay),
+        distrib: Microfacet::trowbridge_reitz(ax, ay),
     })
 }
 

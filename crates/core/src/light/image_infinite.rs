@@ -2,13 +2,17 @@
 //! far away, read from an RGB image that covers the sphere of directions.
 //!
 //! The image is looked up by nearest pixel, as pbrt-v4 does, so the radiance is constant
-//! over each pixel's patch of the sphere. Directions are sampled in proportion to the
-//! pixels' channel average with a [`PiecewiseConstant2D`] over the image's unit square;
+//! over each pixel's patch of the sphere; [`EnvMapping::EquirectBilinear`] interpolates as
+//! Mitsuba 3's `envmap` does. Directions are sampled in proportion to the pixels' channel
+//! average (for the bilinear lookup, the largest average of the pixel and its eight
+//! neighbours, so that the density is positive wherever the radiance is) with a
+//! [`PiecewiseConstant2D`] over the image's unit square;
 //! the solid-angle pdf is the square's pdf divided by the mapping's area element:
 //!
 //! * [`EnvMapping::EqualArea`] (pbrt-v4's layout): `d omega = 4 pi du dv`, so
 //!   `p_omega = p_uv / (4 pi)`;
-//! * [`EnvMapping::Equirect`]: `d omega = 2 pi^2 sin(theta) du dv`, so
+//! * [`EnvMapping::Equirect`] and [`EnvMapping::EquirectBilinear`]:
+//!   `d omega = 2 pi^2 sin(theta) du dv`, so
 //!   `p_omega = p_uv / (2 pi^2 sin theta)`; each row's weight is multiplied by the sine at
 //!   its centre, so the pdf follows the radiance per solid angle rather than per pixel.
 //!
@@ -34,6 +38,11 @@ pub enum EnvMapping {
     /// `phi = 2 pi u` from +x towards +y, row `v` the polar angle `theta = pi v` from +z
     /// (the top row is +z).
     Equirect,
+    /// [`Self::Equirect`]'s directions with Mitsuba 3's bilinear lookup: columns centred at
+    /// `u = (x + 0.5) / width` and wrapping around, rows at `v = y / (height - 1)` (the
+    /// first and last rows on the poles), as Mitsuba's `envmap` `eval_spectrum`. The power
+    /// is counted as for [`Self::Equirect`] (it only steers light selection).
+    EquirectBilinear,
 }
 
 /// An environment-map light.
@@ -77,15 +86,26 @@ impl ImageInfiniteLight {
             "bad environment image size"
         );
         let pixels: Vec<Rgb> = pixels.iter().map(|p| *p * scale).collect();
-        let values: Vec<f32> = pixels
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let weight = match mapping {
-                    EnvMapping::EqualArea => 1.0,
-                    EnvMapping::Equirect => (PI * ((i as u32 / w) as f32 + 0.5) / h as f32).sin(),
-                };
-                p.average().max(0.0) * weight
+        let brightness = |x: u32, y: u32| pixels[(y * w + x) as usize].average().max(0.0);
+        let values: Vec<f32> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                let sine = (PI * (y as f32 + 0.5) / h as f32).sin();
+                match mapping {
+                    EnvMapping::EqualArea => brightness(x, y),
+                    EnvMapping::Equirect => brightness(x, y) * sine,
+                    EnvMapping::EquirectBilinear => {
+                        let mut m = 0.0f32;
+                        for dy in [-1i64, 0, 1] {
+                            let yy = (i64::from(y) + dy).clamp(0, i64::from(h) - 1) as u32;
+                            for dx in [-1i64, 0, 1] {
+                                let xx = (i64::from(x) + dx).rem_euclid(i64::from(w)) as u32;
+                                m = m.max(brightness(xx, yy));
+                            }
+                        }
+                        m * sine
+                    }
+                }
             })
             .collect();
         let distribution = PiecewiseConstant2D::new(&values, UVec2::new(w, h), Vec2::ZERO, Vec2::ONE);
@@ -116,7 +136,7 @@ impl ImageInfiniteLight {
     pub fn direction(&self, uv: Vec2) -> Vec3 {
         match self.mapping {
             EnvMapping::EqualArea => equal_area_square_to_sphere(uv),
-            EnvMapping::Equirect => {
+            EnvMapping::Equirect | EnvMapping::EquirectBilinear => {
                 let (sin_t, cos_t) = (PI * uv.y).sin_cos();
                 let (sin_p, cos_p) = (2.0 * PI * uv.x).sin_cos();
                 Vec3::new(sin_t * cos_p, sin_t * sin_p, cos_t)
@@ -129,7 +149,7 @@ impl ImageInfiniteLight {
     pub fn uv(&self, w: Vec3) -> Vec2 {
         match self.mapping {
             EnvMapping::EqualArea => equal_area_sphere_to_square(w),
-            EnvMapping::Equirect => {
+            EnvMapping::Equirect | EnvMapping::EquirectBilinear => {
                 let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
                 // atan2 rather than acos(z): accurate near the poles too.
                 let theta = w.x.hypot(w.y).atan2(w.z);
@@ -142,16 +162,37 @@ impl ImageInfiniteLight {
     fn area_element(&self, uv: Vec2) -> f32 {
         match self.mapping {
             EnvMapping::EqualArea => 4.0 * PI,
-            EnvMapping::Equirect => 2.0 * PI * PI * (PI * uv.y).sin(),
+            EnvMapping::Equirect | EnvMapping::EquirectBilinear => 2.0 * PI * PI * (PI * uv.y).sin(),
         }
     }
 
-    /// The radiance of the pixel holding `uv` (nearest lookup, as pbrt-v4).
+    /// The radiance at `uv`: the pixel holding it (nearest lookup, as pbrt-v4), or for
+    /// [`EnvMapping::EquirectBilinear`] Mitsuba's bilinear interpolation.
     #[must_use]
     pub fn lookup(&self, uv: Vec2) -> Rgb {
+        if self.mapping == EnvMapping::EquirectBilinear {
+            return self.lookup_bilinear(uv);
+        }
         let x = ((uv.x * self.width as f32) as u32).min(self.width - 1);
         let y = ((uv.y * self.height as f32) as u32).min(self.height - 1);
         self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Mitsuba 3's envmap interpolation (see [`EnvMapping::EquirectBilinear`]).
+    fn lookup_bilinear(&self, uv: Vec2) -> Rgb {
+        let (w, h) = (self.width, self.height);
+        let mut x = uv.x - 0.5 / w as f32;
+        x -= x.floor();
+        let x = x * w as f32;
+        let y = uv.y.clamp(0.0, 1.0) * h.saturating_sub(1) as f32;
+        let x0 = (x as u32).min(w - 1);
+        let y0 = (y as u32).min(h.saturating_sub(2));
+        let (fx, fy) = (x - x0 as f32, y - y0 as f32);
+        let (x1, y1) = ((x0 + 1) % w, (y0 + 1).min(h - 1));
+        let px = |x: u32, y: u32| self.pixels[(y * w + x) as usize];
+        let top = px(x0, y0) * (1.0 - fx) + px(x1, y0) * fx;
+        let bottom = px(x0, y1) * (1.0 - fx) + px(x1, y1) * fx;
+        top * (1.0 - fy) + bottom * fy
     }
 
     /// The unit light-space direction of the world direction `w`, and the Jacobian of the
@@ -225,7 +266,7 @@ impl ImageInfiniteLight {
             let row_sum = row.iter().fold(Rgb::BLACK, |a, p| a + *p);
             let solid_angle = match self.mapping {
                 EnvMapping::EqualArea => 4.0 * PI / (w * h) as f32,
-                EnvMapping::Equirect => {
+                EnvMapping::Equirect | EnvMapping::EquirectBilinear => {
                     let (t0, t1) = (PI * y as f32 / h as f32, PI * (y + 1) as f32 / h as f32);
                     2.0 * PI / w as f32 * (t0.cos() - t1.cos())
                 }

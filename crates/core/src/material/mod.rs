@@ -14,9 +14,10 @@
 
 use crate::bsdf::{
     roughness_to_alpha, Bsdf, Bxdf, ConductorBxdf, DielectricBxdf, DiffuseBxdf, DiffuseTransmissionBxdf, LayeredBxdf,
-    MetallicRoughnessBxdf, ThinDielectricBxdf, TrowbridgeReitz,
+    MetallicRoughnessBxdf, Microfacet, PlasticBxdf, ThinDielectricBxdf,
 };
 use crate::color::Rgb;
+use crate::math::Vec3;
 use crate::sampling::hash_u64s;
 use crate::scene::MaterialDesc;
 use crate::shape::SurfaceInteraction;
@@ -86,6 +87,34 @@ impl Material {
         // The top 24 bits: a uniform number in [0, 1) exactly representable as f32.
         let u = (h >> 40) as f32 / 16_777_216.0;
         Some(if amount < u { materials[0] } else { materials[1] })
+    }
+
+    /// For [`Self::NormalMap`], move the shading frame of `si` to the map's normal (see
+    /// [`MaterialDesc::NormalMap`]) and return the inner material; `None` for every other
+    /// material.
+    #[must_use]
+    pub fn apply_normal_map(&self, si: &mut SurfaceInteraction) -> Option<u32> {
+        let Self::NormalMap { material, normal_map } = self else {
+            return None;
+        };
+        let c = normal_map.evaluate(&TextureContext::at_point(si));
+        let frame = crate::math::Frame::from_zx(si.ns, si.dpdu);
+        let n_local = Vec3::new(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0).try_normalize();
+        if let Some(n_local) = n_local {
+            // The old tangent projected onto the new tangent plane.
+            let s_local = (Vec3::X - n_local * n_local.x)
+                .try_normalize()
+                .unwrap_or_else(|| crate::math::Frame::from_z(n_local).x);
+            let ns = frame.from_local(n_local).normalize();
+            let dpdu = frame.from_local(s_local).normalize();
+            // Keep the shading normal on the side of the geometric one (a map pointing
+            // below the surface leaves the frame unchanged).
+            if ns.dot(si.n()) * si.ns.dot(si.n()) > 0.0 {
+                si.ns = ns;
+                si.dpdu = dpdu;
+            }
+        }
+        Some(*material)
     }
 
     /// True when some parameter is a non-constant texture, so [`Self::bsdf`] needs a
@@ -164,7 +193,14 @@ impl Material {
                 metallic,
                 roughness,
             } => !(base_color.is_constant() && metallic.is_constant() && roughness.is_constant()),
+            Self::Plastic {
+                diffuse_reflectance,
+                specular_reflectance,
+                ..
+            } => !(diffuse_reflectance.is_constant() && specular_reflectance.is_constant()),
             Self::Mix { amount, .. } => !amount.is_constant(),
+            // (Resolved to the inner material before a BSDF is built.)
+            Self::NormalMap { .. } => false,
             Self::Interface => false,
         }
     }
@@ -185,12 +221,13 @@ impl Material {
                 u_roughness,
                 v_roughness,
                 remap_roughness,
+                microfacet,
             } => {
                 let (eta, k) = match reflectance {
                     Some(r) => index_from_reflectance(r.evaluate(ctx)),
                     None => (eta.evaluate(ctx), k.evaluate(ctx)),
                 };
-                let distrib = TrowbridgeReitz::new(
+                let distrib = microfacet.distribution(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 );
@@ -201,9 +238,10 @@ impl Material {
                 u_roughness,
                 v_roughness,
                 remap_roughness,
+                microfacet,
             } => Bxdf::Dielectric(DielectricBxdf {
                 eta: *eta,
-                distrib: TrowbridgeReitz::new(
+                distrib: microfacet.distribution(
                     alpha(u_roughness.evaluate(ctx), *remap_roughness),
                     alpha(v_roughness.evaluate(ctx), *remap_roughness),
                 ),
@@ -274,7 +312,7 @@ impl Material {
                     top,
                     // pbrt-v4: the base's index is relative to the coat above it.
                     bottom: ConductorBxdf {
-                        distrib: TrowbridgeReitz::new(
+                        distrib: Microfacet::trowbridge_reitz(
                             alpha(conductor_u_roughness.evaluate(ctx), *remap_roughness),
                             alpha(conductor_v_roughness.evaluate(ctx), *remap_roughness),
                         ),
@@ -297,7 +335,20 @@ impl Material {
                 metallic.evaluate(ctx),
                 roughness.evaluate(ctx),
             )),
-            Self::Mix { .. } | Self::Interface => return None,
+            Self::Plastic {
+                diffuse_reflectance,
+                specular_reflectance,
+                nonlinear,
+                specular_sampling_weight,
+                coat,
+            } => Bxdf::Plastic(PlasticBxdf {
+                coat: *coat,
+                diffuse: diffuse_reflectance.evaluate(ctx).map(|v| v.clamp(0.0, 1.0)),
+                specular: specular_reflectance.evaluate(ctx).map(|v| v.max(0.0)),
+                nonlinear: *nonlinear,
+                specular_sampling_weight: specular_sampling_weight.clamp(0.0, 1.0),
+            }),
+            Self::Mix { .. } | Self::NormalMap { .. } | Self::Interface => return None,
         };
         Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
     }
@@ -307,7 +358,7 @@ impl Material {
 fn coat(eta: f32, u_roughness: f32, v_roughness: f32, remap: bool) -> DielectricBxdf {
     DielectricBxdf {
         eta: if eta == 0.0 { 1.0 } else { eta },
-        distrib: TrowbridgeReitz::new(alpha(u_roughness, remap), alpha(v_roughness, remap)),
+        distrib: Microfacet::trowbridge_reitz(alpha(u_roughness, remap), alpha(v_roughness, remap)),
     }
 }
 
@@ -350,6 +401,7 @@ mod tests {
             u_roughness: 0.0.into(),
             v_roughness: 0.0.into(),
             remap_roughness: true,
+            microfacet: Default::default(),
         });
         let Bxdf::Conductor(ConductorBxdf { eta, k, .. }) = bxdf(&m) else {
             panic!("{m:?}")
@@ -370,6 +422,7 @@ mod tests {
                 u_roughness: 0.25.into(),
                 v_roughness: 0.0.into(),
                 remap_roughness: remap,
+                microfacet: Default::default(),
             });
             let Bxdf::Dielectric(DielectricBxdf { distrib, .. }) = bxdf(&m) else {
                 panic!()
@@ -462,6 +515,46 @@ mod tests {
             assert!(m.is_textured());
             assert_eq!(m.mix_choice(&si, &ctx), Some(expected));
         }
+    }
+
+    #[test]
+    fn normal_maps_move_the_shading_frame_in_its_own_coordinates() {
+        let inner = Material::from_desc(&MaterialDesc::Diffuse {
+            reflectance: Rgb::splat(0.5).into(),
+        });
+        assert_eq!(inner.apply_normal_map(&mut hit()), None);
+        // A tilted surface, so that local and world coordinates differ.
+        let mut si = hit();
+        si.ns = Vec3::new(0.0, 0.6, 0.8);
+        si.intr.n = si.ns;
+        si.dpdu = Vec3::X;
+        // The identity map leaves the frame as it is.
+        let identity = Material::from_desc(&MaterialDesc::NormalMap {
+            material: 3,
+            normal_map: Rgb::new(0.5, 0.5, 1.0).into(),
+        });
+        let mut s = si;
+        assert_eq!(identity.apply_normal_map(&mut s), Some(3));
+        assert!((s.ns - si.ns).length() < 1e-6 && (s.dpdu - si.dpdu).length() < 1e-6);
+        // Tilt 45 degrees towards the tangent: local normal (1, 0, 1) / sqrt 2.
+        let c = 0.5 + 0.5 * std::f32::consts::FRAC_1_SQRT_2;
+        let tilted = Material::from_desc(&MaterialDesc::NormalMap {
+            material: 3,
+            normal_map: Rgb::new(c, 0.5, c).into(),
+        });
+        let mut s = si;
+        assert_eq!(tilted.apply_normal_map(&mut s), Some(3));
+        let expected = (Vec3::X + si.ns).normalize();
+        assert!((s.ns - expected).length() < 1e-3, "{}", s.ns);
+        assert!(s.dpdu.dot(s.ns).abs() < 1e-5 && s.dpdu.dot(Vec3::X) > 0.5, "{}", s.dpdu);
+        // A map pointing below the geometric surface is ignored.
+        let below = Material::from_desc(&MaterialDesc::NormalMap {
+            material: 3,
+            normal_map: Rgb::new(0.5, 0.5, 0.0).into(),
+        });
+        let mut s = si;
+        assert_eq!(below.apply_normal_map(&mut s), Some(3));
+        assert_eq!(s.ns, si.ns);
     }
 
     #[test]

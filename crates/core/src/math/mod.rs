@@ -4,6 +4,7 @@
 mod bounds;
 mod float;
 mod frame;
+pub mod quadrature;
 mod ray;
 mod transform;
 

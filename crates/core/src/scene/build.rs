@@ -237,6 +237,37 @@ impl SceneDescription {
                         &float_constants(&[metallic, roughness]),
                     )?;
                 }
+                MaterialDesc::Plastic {
+                    diffuse_reflectance,
+                    specular_reflectance,
+                    specular_sampling_weight,
+                    coat,
+                    ..
+                } => {
+                    check_non_negative(
+                        &format!("diffuse reflectance of material {i}"),
+                        &rgb_constant(diffuse_reflectance),
+                    )?;
+                    check_non_negative(
+                        &format!("specular reflectance of material {i}"),
+                        &rgb_constant(specular_reflectance),
+                    )?;
+                    check_positive_eta(i, coat.eta())?;
+                    if !(0.0..=1.0).contains(specular_sampling_weight) {
+                        return Err(invalid(
+                            format!("specular sampling weight of material {i}"),
+                            format!("expected in [0, 1], found {specular_sampling_weight}"),
+                        ));
+                    }
+                }
+                MaterialDesc::NormalMap { material, .. } => {
+                    if *material as usize >= self.materials.len() {
+                        return Err(invalid(
+                            format!("material {i}"),
+                            format!("normal-maps material index {material}, out of range"),
+                        ));
+                    }
+                }
                 MaterialDesc::Interface => {}
             }
         }
@@ -591,6 +622,7 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
         while let Some(&mut (m, ref mut next)) = stack.last_mut() {
             let children: &[MaterialId] = match &materials[m] {
                 MaterialDesc::Mix { materials, .. } => materials,
+                MaterialDesc::NormalMap { material, .. } => std::slice::from_ref(material),
                 _ => &[],
             };
             if let Some(&c) = children.get(*next) {
@@ -604,7 +636,7 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
                     1 => {
                         return Err(invalid(
                             format!("material {c}"),
-                            "a mix material contains itself (directly or through other mixes)",
+                            "a mix or normal-map material contains itself (directly or through others)",
                         ))
                     }
                     _ => {}
@@ -643,6 +675,7 @@ impl Scene {
         desc.validate()?;
         let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
         let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
+        let has_normal_maps = materials.iter().any(|m| matches!(m, Material::NormalMap { .. }));
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         // Which description shape each primitive comes from (for messages).
@@ -773,6 +806,7 @@ impl Scene {
             integrator: desc.integrator,
             instances,
             has_interfaces,
+            has_normal_maps,
             bvh,
         })
     }

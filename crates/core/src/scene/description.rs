@@ -3,6 +3,7 @@
 //! Everything here is already resolved: transforms are matrices, named materials are indices,
 //! meshes are in world space. No strings, files or parsing state reach the core.
 
+use crate::bsdf::{MicrofacetStyle, PlasticCoat};
 pub use crate::camera::CameraDesc;
 use crate::color::Rgb;
 pub use crate::film::{FilmDesc, FilterDesc};
@@ -299,6 +300,8 @@ pub enum MaterialDesc {
         /// Map roughness to microfacet alpha by `sqrt` (pbrt's `remaproughness`, default
         /// true); otherwise the roughness is alpha itself.
         remap_roughness: bool,
+        /// Microfacet distribution and masking term (default pbrt-v4's).
+        microfacet: MicrofacetStyle,
     },
     /// Glass, water (pbrt `dielectric`): reflection and refraction, smooth or rough.
     Dielectric {
@@ -311,6 +314,8 @@ pub enum MaterialDesc {
         v_roughness: FloatTexture,
         /// As for [`MaterialDesc::Conductor`].
         remap_roughness: bool,
+        /// As for [`MaterialDesc::Conductor`].
+        microfacet: MicrofacetStyle,
     },
     /// A thin slab such as a window pane (pbrt `thindielectric`): specular reflection and
     /// straight transmission, interreflections inside summed.
@@ -384,6 +389,33 @@ pub enum MaterialDesc {
         max_depth: u32,
         /// Random walks per evaluation (pbrt default 1).
         n_samples: u32,
+    },
+    /// Mitsuba 3's `plastic` and `roughplastic` (see `bsdf::PlasticBxdf`): a dielectric
+    /// coat over a diffuse base with the internal scattering summed in closed form.
+    Plastic {
+        /// Albedo of the base, in [0, 1] (clamped per hit).
+        diffuse_reflectance: RgbTexture,
+        /// Tint of the coat's reflection (Mitsuba default 1).
+        specular_reflectance: RgbTexture,
+        /// Account for the colour shift of internal scattering (Mitsuba's `nonlinear`).
+        nonlinear: bool,
+        /// Mitsuba's specular sampling weight, `mean(specular) / (mean(diffuse) +
+        /// mean(specular))` over the textures, in [0, 1].
+        specular_sampling_weight: f32,
+        /// The coat: index of refraction and roughness, with its precomputed tables.
+        coat: PlasticCoat,
+    },
+    /// Another material with its shading normal replaced by a normal map (Mitsuba 3's
+    /// `normalmap`): the map's RGB `c` gives the normal `normalize(2 c - 1)` in the shading
+    /// frame of the surface (x along the tangent, z the shading normal), and the old tangent
+    /// projected on the new tangent plane is the new tangent. Applied where rays hit the
+    /// surface (`Scene::intersect`), so integrators see the perturbed normal (their cosine
+    /// is taken with it, as Mitsuba's BSDFs take theirs in the perturbed frame).
+    NormalMap {
+        /// The material shaded with the new frame (no cycles through normal maps).
+        material: MaterialId,
+        /// Linear RGB in [0, 1] per texel (a `raw` texture).
+        normal_map: RgbTexture,
     },
     /// One of two materials per shading point (pbrt `mix`): the second with probability
     /// `amount`, chosen by a hash of the point and `wo`, so deterministically.

@@ -90,6 +90,8 @@ pub struct Scene {
     pub instances: Vec<Instance>,
     /// True when some material is an `interface`, which shadow rays must skip.
     has_interfaces: bool,
+    /// True when some material is a normal map (so `intersect` looks for them).
+    has_normal_maps: bool,
     bvh: WideBvh,
 }
 
@@ -112,18 +114,34 @@ impl Scene {
             },
             |_, h| (ShapeHit { t: h.t, data: h.b }, 0),
         )?;
-        if index < n {
+        let mut hit = if index < n {
             let primitive = &self.primitives[index as usize];
             let si = primitive.shape.interaction(ray, &shape_hit);
-            Some(Hit { si, primitive })
+            Hit { si, primitive }
         } else {
             let inst = &self.instances[(index - n) as usize];
             let si = inst.interaction(ray, prim, &shape_hit);
-            Some(Hit {
+            Hit {
                 si,
                 primitive: &inst.object.primitives[prim as usize],
-            })
+            }
+        };
+        if self.has_normal_maps {
+            // Normal maps move the shading frame where the ray lands (bounded: the
+            // description has no cycles).
+            let mut m = hit.primitive.material;
+            for _ in 0..self.materials.len() {
+                match self
+                    .materials
+                    .get(m as usize)
+                    .and_then(|mat| mat.apply_normal_map(&mut hit.si))
+                {
+                    Some(inner) => m = inner,
+                    None => break,
+                }
+            }
         }
+        Some(hit)
     }
 
     /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces and
@@ -178,10 +196,14 @@ impl Scene {
     /// (their amounts evaluated at `si`).
     fn resolve_material(&self, material: u32, si: &SurfaceInteraction) -> &Material {
         let mut m = &self.materials[material as usize];
-        while matches!(m, Material::Mix { .. }) {
-            let Some(next) = m.mix_choice(si, &self.texture_context(m, si)) else {
-                break;
+        loop {
+            let next = match m {
+                Material::Mix { .. } => m.mix_choice(si, &self.texture_context(m, si)),
+                // (The frame was moved by `intersect`.)
+                Material::NormalMap { material, .. } => Some(*material),
+                _ => None,
             };
+            let Some(next) = next else { break };
             m = &self.materials[next as usize];
         }
         m

@@ -186,6 +186,7 @@ impl<'a> Materials<'a> {
                         u_roughness: alpha.into(),
                         v_roughness: alpha.into(),
                         remap_roughness: false,
+                        microfacet: Default::default(),
                     },
                     area_light,
                 ));

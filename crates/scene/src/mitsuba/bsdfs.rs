@@ -4,23 +4,34 @@
 //! * `twosided` -> its nested BSDF (mcrender's BSDFs already act on both sides);
 //! * `dielectric`, `thindielectric` (`int_ior`, `ext_ior`: numbers or Mitsuba's named
 //!   IORs; defaults bk7 and air);
-//! * `roughdielectric` and `roughconductor` with `distribution="ggx"` (`alpha`, or
-//!   `alpha_u`/`alpha_v`; default 0.1) -> the Trowbridge-Reitz (GGX) microfacet lobes;
+//! * `roughdielectric` and `roughconductor` (`distribution` `beckmann`, Mitsuba's default,
+//!   or `ggx`; `alpha`, or `alpha_u`/`alpha_v`; default 0.1) -> the microfacet lobes with
+//!   Mitsuba's separable masking-shadowing `G1(wo) G1(wi)` (for Beckmann with Mitsuba's
+//!   rational `G1`);
+//! * `plastic` and `roughplastic` (`diffuse_reflectance` 0.5, `specular_reflectance` 1,
+//!   `nonlinear` false, `int_ior` polypropylene (1.49), `ext_ior` air; `roughplastic` also
+//!   `distribution` and an isotropic `alpha`) -> Mitsuba's own plastic model
+//!   (`bsdf::PlasticBxdf`), with Mitsuba's specular sampling weight (for a textured
+//!   reflectance the texture's mean is taken as 0.5: it only steers sampling);
 //! * `conductor` (`material` Ag/Al/Au/Cu or `none` (a perfect mirror, the default), or
 //!   `eta`/`k`);
 //! * `mask` (`opacity`, default 0.5) -> the shape's alpha cut-out around the nested BSDF.
 //!
-//! Not rendered (errors naming the plugin): the Beckmann distribution, `plastic`,
-//! `roughplastic`, `principled`, `principledthin`, `bumpmap`, `normalmap`, `blendbsdf`,
-//! `pplastic`, `hair`, `measured`, `polarizer`, `retarder`, `circular`, `null`.
+//! * `normalmap` (`normalmap`: a raw texture, e.g. `bitmap` with `raw` or `rawconstant`)
+//!   -> the nested BSDF with Mitsuba's perturbed shading frame
+//!   (`MaterialDesc::NormalMap`).
+//!
+//! Not rendered (errors naming the plugin): `principled`, `principledthin`, `bumpmap`,
+//! `blendbsdf`, `pplastic`, `hair`, `measured`, `polarizer`, `retarder`,
+//! `circular`, `null`.
 //!
 //! Differences kept: Mitsuba's `diffuse` is black seen from behind (mcrender's reflects on
-//! both sides: the same wherever only front faces are seen); Mitsuba's GGX lobes use the
-//! separable Smith masking-shadowing term `G1(wo) G1(wi)`, mcrender's (pbrt-v4) the
-//! height-correlated one, which is slightly brighter at grazing angles.
+//! both sides: the same wherever only front faces are seen), and so is its plastic.
 
+use mcrender_core::bsdf::{Masking, MicrofacetModel, MicrofacetStyle, PlasticCoat};
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::MaterialDesc;
+use mcrender_core::texture::RgbTexture;
 
 use super::builder::{Builder, Named, Surface};
 use super::props::Props;
@@ -38,7 +49,7 @@ impl Builder {
                 let reflectance = self.rgb_param(&mut p, "reflectance", Rgb::splat(0.5), false)?;
                 self.plain(MaterialDesc::Diffuse { reflectance })
             }
-            "twosided" | "mask" => {
+            "twosided" | "mask" | "normalmap" => {
                 let inner: Vec<_> = p.nested("bsdf");
                 let mut surfaces = Vec::new();
                 for b in inner {
@@ -54,8 +65,8 @@ impl Builder {
                 p.use_refs();
                 let inner = match surfaces.as_slice() {
                     [s] => s.clone(),
-                    [] if kind == "mask" => {
-                        return Err(SceneError::syntax(&el.loc, "a mask needs a nested bsdf"));
+                    [] if kind != "twosided" => {
+                        return Err(SceneError::syntax(&el.loc, format!("a {kind} needs a nested bsdf")));
                     }
                     _ => {
                         return Err(SceneError::unsupported(
@@ -68,7 +79,19 @@ impl Builder {
                         ))
                     }
                 };
-                if kind == "mask" {
+                if kind == "normalmap" {
+                    if !p.has("normalmap") {
+                        return Err(SceneError::syntax(&el.loc, "a normalmap needs a \"normalmap\" texture"));
+                    }
+                    let normal_map = self.rgb_param(&mut p, "normalmap", Rgb::new(0.5, 0.5, 1.0), false)?;
+                    Surface {
+                        material: self.add_material(MaterialDesc::NormalMap {
+                            material: inner.material,
+                            normal_map,
+                        }),
+                        alpha: inner.alpha,
+                    }
+                } else if kind == "mask" {
                     if inner.alpha.is_some() {
                         return Err(SceneError::unsupported(&el.loc, "a mask inside a mask"));
                     }
@@ -90,18 +113,19 @@ impl Builder {
                 if kind == "thindielectric" {
                     self.plain(MaterialDesc::ThinDielectric { eta })
                 } else {
-                    let (u, v) = self.roughness(&mut p, kind == "roughdielectric")?;
+                    let (u, v, microfacet) = self.roughness(&mut p, kind == "roughdielectric")?;
                     self.plain(MaterialDesc::Dielectric {
                         eta,
                         u_roughness: u.into(),
                         v_roughness: v.into(),
                         remap_roughness: false,
+                        microfacet,
                     })
                 }
             }
             "conductor" | "roughconductor" => {
                 no_tint(&mut p, "specular_reflectance")?;
-                let (u, v) = self.roughness(&mut p, kind == "roughconductor")?;
+                let (u, v, microfacet) = self.roughness(&mut p, kind == "roughconductor")?;
                 let material = p.string("material")?;
                 let (eta, k, reflectance) = if p.has("eta") || p.has("k") {
                     let eta = self.rgb_param(&mut p, "eta", Rgb::splat(0.0), false)?;
@@ -146,17 +170,49 @@ impl Builder {
                     u_roughness: u.into(),
                     v_roughness: v.into(),
                     remap_roughness: false,
+                    microfacet,
                 })
             }
             "plastic" | "roughplastic" => {
-                return Err(Self::unsupported(
-                    el,
-                    " yet (Mitsuba's plastic, a specular coat over a diffuse base with internal \
-                     scattering, is a different model from pbrt's coateddiffuse)",
-                ))
+                let int_ior = ior(&mut p, "int_ior", 1.49)?;
+                let ext_ior = ior(&mut p, "ext_ior", 1.000_277)?;
+                if !(int_ior > 0.0 && ext_ior > 0.0) || (kind == "roughplastic" && int_ior == ext_ior) {
+                    return Err(SceneError::invalid(
+                        &el.loc,
+                        format!(
+                            "{}: the indices of refraction must be positive and differ",
+                            el.describe()
+                        ),
+                    ));
+                }
+                let eta = int_ior / ext_ior;
+                let diffuse_reflectance = self.rgb_param(&mut p, "diffuse_reflectance", Rgb::splat(0.5), false)?;
+                let specular_reflectance = self.rgb_param(&mut p, "specular_reflectance", Rgb::splat(1.0), false)?;
+                let nonlinear = p.bool("nonlinear", false)?;
+                let coat = if kind == "roughplastic" {
+                    let (u, v, style) = self.roughness(&mut p, true)?;
+                    if u != v {
+                        return Err(SceneError::unsupported(
+                            &el.loc,
+                            "an anisotropic roughplastic (Mitsuba refuses it too)",
+                        ));
+                    }
+                    PlasticCoat::rough(style.distribution(u.max(1e-4), u.max(1e-4)), eta)
+                } else {
+                    PlasticCoat::smooth(eta)
+                };
+                let (d, s) = (texture_mean(&diffuse_reflectance), texture_mean(&specular_reflectance));
+                let specular_sampling_weight = if d + s > 0.0 { s / (d + s) } else { 0.5 };
+                self.plain(MaterialDesc::Plastic {
+                    diffuse_reflectance,
+                    specular_reflectance,
+                    nonlinear,
+                    specular_sampling_weight,
+                    coat,
+                })
             }
-            "principled" | "principledthin" | "bumpmap" | "normalmap" | "blendbsdf" | "pplastic" | "hair"
-            | "measured" | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
+            "principled" | "principledthin" | "bumpmap" | "blendbsdf" | "pplastic" | "hair" | "measured"
+            | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
             _ => return Err(Self::unsupported(el, " (unknown BSDF plugin)")),
         };
         self.name(el, Named::Bsdf(surface.clone()));
@@ -172,44 +228,48 @@ impl Builder {
         }
     }
 
-    /// Microfacet `(alpha_u, alpha_v)` of a rough plugin (GGX only), or `(0, 0)`.
-    fn roughness(&mut self, p: &mut Props, rough: bool) -> Result<(f32, f32), SceneError> {
+    /// Microfacet `(alpha_u, alpha_v)` and distribution of a rough plugin (Beckmann by
+    /// default, as Mitsuba), or `(0, 0)`; Mitsuba's separable masking in both cases.
+    fn roughness(&mut self, p: &mut Props, rough: bool) -> Result<(f32, f32, MicrofacetStyle), SceneError> {
+        let mut style = MicrofacetStyle {
+            model: MicrofacetModel::Beckmann,
+            masking: Masking::Separable,
+        };
         if !rough {
-            return Ok((0.0, 0.0));
+            return Ok((0.0, 0.0, style));
         }
-        let dist = p.string("distribution")?;
-        match &dist {
-            Some((d, _)) if d == "ggx" => {}
-            Some((d, l)) if d == "beckmann" => {
-                return Err(SceneError::unsupported(
-                    l,
-                    "the Beckmann microfacet distribution (use ggx)",
-                ))
-            }
-            None => {
-                return Err(SceneError::unsupported(
-                    &p.el.loc,
-                    format!(
-                        "{} with Mitsuba's default Beckmann distribution (give distribution=\"ggx\")",
-                        p.el.describe()
-                    ),
-                ))
-            }
+        match p.string("distribution")? {
+            None => {}
+            Some((d, _)) if d == "beckmann" => {}
+            Some((d, _)) if d == "ggx" => style.model = MicrofacetModel::TrowbridgeReitz,
             Some((d, l)) => {
                 return Err(SceneError::syntax(
-                    l,
+                    &l,
                     format!("unknown distribution \"{d}\" (expected ggx or beckmann)"),
                 ))
             }
         }
         let _ = p.bool("sample_visible", true)?;
-        if p.has("alpha_u") || p.has("alpha_v") {
-            Ok((p.float("alpha_u", 0.1)?, p.float("alpha_v", 0.1)?))
+        let (u, v) = if p.has("alpha_u") || p.has("alpha_v") {
+            (p.float("alpha_u", 0.1)?, p.float("alpha_v", 0.1)?)
         } else {
             let a = p.float("alpha", 0.1)?;
-            Ok((a, a))
+            (a, a)
+        };
+        if !(u.is_finite() && v.is_finite() && u >= 0.0 && v >= 0.0) {
+            return Err(SceneError::invalid(
+                &p.el.loc,
+                format!("{}: alpha must be finite and >= 0, found ({u}, {v})", p.el.describe()),
+            ));
         }
+        Ok((u, v, style))
     }
+}
+
+/// Mitsuba's `Texture::mean` for a constant: the mean of its channels; 0.5 for other
+/// textures (only the plastic's sampling uses it).
+fn texture_mean(t: &RgbTexture) -> f32 {
+    t.constant().map_or(0.5, |c| c.average().max(0.0))
 }
 
 /// An index of refraction: a number or one of Mitsuba's names.

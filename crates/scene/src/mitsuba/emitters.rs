@@ -7,7 +7,9 @@
 //! Mitsuba's envmap is a latitude-longitude image with +y up: a direction `d` (in the
 //! emitter's space) reads `u = atan2(d.x, -d.z) / 2 pi`, `v = acos(d.y) / pi`. mcrender's
 //! [`EnvMapping::Equirect`] reads `phi = 2 pi u` from +x towards +y and `theta = pi v`
-//! from +z, so its light space maps to Mitsuba's by `(x, y, z) -> (y, z, -x)`.
+//! from +z, so its light space maps to Mitsuba's by `(x, y, z) -> (y, z, -x)`. The image is
+//! interpolated bilinearly as Mitsuba does ([`EnvMapping::EquirectBilinear`]: columns
+//! centred at `(x + 0.5) / width`, rows from pole to pole at `y / (height - 1)`).
 
 use mcrender_core::math::{Mat4, Transform, Vec3, Vec4};
 use mcrender_core::scene::{EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc};
@@ -75,7 +77,7 @@ impl Builder {
                         height: img.height,
                         pixels: img.pixels,
                     },
-                    mapping: EnvMapping::Equirect,
+                    mapping: EnvMapping::EquirectBilinear,
                     scale,
                     world_from_light: Transform::new(m)
                         .ok_or_else(|| SceneError::invalid(&el.loc, "the envmap's to_world is singular"))?,

@@ -1,7 +1,8 @@
 //! Texturable parameters and textures: a parameter is an `<rgb>`, `<spectrum>`, `<float>`,
 //! a nested `<texture>` or a named `<ref>` to one. Texture plugins: `bitmap` (`filename`,
 //! `raw`, `filter_type` bilinear/nearest, `wrap_mode` repeat/mirror/clamp, `to_uv` scale and
-//! translation) and `checkerboard` (`color0`, `color1`, `to_uv`).
+//! translation), `checkerboard` (`color0`, `color1`, `to_uv`) and `rawconstant` (`value`,
+//! a float or a vector, used as is).
 //!
 //! Mitsuba's `uv` has `v` pointing down the image (row 0 at `v = 0`); mcrender's meshes
 //! carry pbrt's `v = 1 - v_mitsuba` (see `shapes`) and its image textures put row 0 at
@@ -204,8 +205,23 @@ impl Builder {
                     tex2: c1,
                 }))
             }
+            "rawconstant" => {
+                // A constant taken as is (no colour conversion): a `float` or a `vector`.
+                let c = match p.get("value") {
+                    Some(v) if v.tag == "float" => Rgb::splat(super::props::scalar(v, &["float"])?),
+                    Some(_) => {
+                        let v = p.vec3("value")?.unwrap_or_default();
+                        Rgb::new(v.x, v.y, v.z)
+                    }
+                    None => return Err(SceneError::syntax(&e.loc, "a rawconstant needs a \"value\"")),
+                };
+                Texture::Constant(T::from_rgb(c, e)?)
+            }
             _ => {
-                return Err(Builder::unsupported(e, " (textures: bitmap, checkerboard)"));
+                return Err(Builder::unsupported(
+                    e,
+                    " (textures: bitmap, checkerboard, rawconstant)",
+                ));
             }
         };
         self.finish(&p);

@@ -293,7 +293,7 @@ fn upper_hemisphere_illuminance(image: &ImageRgb, mapping: EnvMapping) -> f32 {
                     let d = equal_area_square_to_sphere(glam::Vec2::new(u as f32, v as f32));
                     (f64::from(d.z), 2.0 * PI / (w * h) as f64)
                 }
-                EnvMapping::Equirect => {
+                EnvMapping::Equirect | EnvMapping::EquirectBilinear => {
                     let (t0, t1) = (PI * y as f64 / h as f64, PI * (y + 1) as f64 / h as f64);
                     ((PI * v).cos(), 0.5 * 2.0 * PI / w as f64 * (t0.cos() - t1.cos()))
                 }

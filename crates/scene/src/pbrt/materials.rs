@@ -192,6 +192,7 @@ impl SceneBuilder {
                     u_roughness,
                     v_roughness,
                     remap_roughness,
+                    microfacet: Default::default(),
                 })
             }
             "dielectric" => {
@@ -204,6 +205,7 @@ impl SceneBuilder {
                     u_roughness,
                     v_roughness,
                     remap_roughness,
+                    microfacet: Default::default(),
                 })
             }
             "thindielectric" => {
