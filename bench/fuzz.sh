@@ -9,7 +9,7 @@
 # nightly toolchain and cargo-fuzz (`cargo install cargo-fuzz`). The working corpus grows in
 # fuzz/corpus/TARGET (seeded from fuzz/seeds/TARGET and fuzz/regressions/TARGET); crashes land
 # in fuzz/artifacts/TARGET. A crash input, once fixed, belongs in fuzz/regressions/TARGET, which
-# `cargo test -p mcrender-scene --test fuzz_corpus` replays on stable.
+# `cargo test -p mcrender-formats --test fuzz_corpus` replays on stable.
 # The last lines printed are libFuzzer's summary: executions (stat::number_of_executed_units),
 # and the final "cov:" / "ft:" figures are its coverage (edges, features).
 set -euo pipefail
@@ -27,7 +27,7 @@ seed_dirs=()
 for d in "seeds/$target" "regressions/$target"; do
     [[ -d $d ]] && seed_dirs+=("$d")
 done
-# -rss_limit_mb: the loader's own limit is 256 MiB (mcrender_scene::fuzzing::MEMORY_LIMIT);
+# -rss_limit_mb: the loader's own limit is 256 MiB (mcrender_formats::fuzzing::MEMORY_LIMIT);
 # anything far past it is a finding. -timeout: an input taking longer is a hang.
 exec nice -n "${FUZZ_NICE:-19}" cargo +nightly fuzz run "$target" "corpus/$target" "${seed_dirs[@]}" -- \
     -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=1048576 \

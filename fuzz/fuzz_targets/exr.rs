@@ -1,6 +1,6 @@
-//! Fuzz target `exr`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `exr`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("exr", data);
+    mcrender_formats::fuzzing::run("exr", data);
 });

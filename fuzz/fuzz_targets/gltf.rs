@@ -1,6 +1,6 @@
-//! Fuzz target `gltf`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `gltf`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("gltf", data);
+    mcrender_formats::fuzzing::run("gltf", data);
 });

@@ -1,6 +1,6 @@
-//! Fuzz target `loader`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `loader`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("loader", data);
+    mcrender_formats::fuzzing::run("loader", data);
 });

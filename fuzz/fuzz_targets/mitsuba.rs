@@ -1,6 +1,6 @@
-//! Fuzz target `mitsuba`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `mitsuba`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("mitsuba", data);
+    mcrender_formats::fuzzing::run("mitsuba", data);
 });

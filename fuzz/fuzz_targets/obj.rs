@@ -1,6 +1,6 @@
-//! Fuzz target `obj`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `obj`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("obj", data);
+    mcrender_formats::fuzzing::run("obj", data);
 });

@@ -1,6 +1,6 @@
-//! Fuzz target `parser`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `parser`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("parser", data);
+    mcrender_formats::fuzzing::run("parser", data);
 });

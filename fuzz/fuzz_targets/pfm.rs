@@ -1,6 +1,6 @@
-//! Fuzz target `pfm`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `pfm`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("pfm", data);
+    mcrender_formats::fuzzing::run("pfm", data);
 });

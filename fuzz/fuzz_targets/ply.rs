@@ -1,6 +1,6 @@
-//! Fuzz target `ply`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `ply`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("ply", data);
+    mcrender_formats::fuzzing::run("ply", data);
 });

@@ -1,6 +1,6 @@
-//! Fuzz target `png`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `png`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("png", data);
+    mcrender_formats::fuzzing::run("png", data);
 });

@@ -1,6 +1,6 @@
-//! Fuzz target `tga`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `tga`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("tga", data);
+    mcrender_formats::fuzzing::run("tga", data);
 });

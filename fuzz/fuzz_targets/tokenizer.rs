@@ -1,6 +1,6 @@
-//! Fuzz target `tokenizer`: see `mcrender_scene::fuzzing`.
+//! Fuzz target `tokenizer`: see `mcrender_formats::fuzzing`.
 #![no_main]
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    mcrender_scene::fuzzing::run("tokenizer", data);
+    mcrender_formats::fuzzing::run("tokenizer", data);
 });

@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use mcrender_core::accel::Bvh;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{Scene, SceneDescription};
-use mcrender_scene::pbrt::load_file;
+use mcrender_formats::pbrt::load_file;
 
 fn cornell() -> SceneDescription {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt");

@@ -55,7 +55,7 @@ fn main() -> Result<()> {
     let [_, scene, out] = &args[..] else {
         bail!("usage: export_mitsuba SCENE.pbrt OUT_DIR")
     };
-    let loaded = mcrender_scene::pbrt::load_file(&PathBuf::from(scene)).map_err(anyhow::Error::new)?;
+    let loaded = mcrender_formats::pbrt::load_file(&PathBuf::from(scene)).map_err(anyhow::Error::new)?;
     let d = &loaded.description;
     let out = PathBuf::from(out);
     std::fs::create_dir_all(&out)?;

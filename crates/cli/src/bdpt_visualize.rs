@@ -13,7 +13,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{IntegratorKind, Scene, SceneDescription};
-use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_formats::image_io::{write_image, ImageRgb};
 
 /// The strategies `(s, t)` of paths with at most `max_depth` bounces, by depth.
 #[must_use]

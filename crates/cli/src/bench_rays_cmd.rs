@@ -17,7 +17,7 @@ use clap::{Args, ValueEnum};
 use mcrender_core::accel::{Bvh, Isa, WideBvh};
 use mcrender_core::math::{Bounds3, Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
-use mcrender_scene::ply::read_ply;
+use mcrender_formats::ply::read_ply;
 use rayon::prelude::*;
 
 /// Bytes per ray in `RAYS.bin`.

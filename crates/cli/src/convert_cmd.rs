@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use mcrender_core::film::downsample_box;
-use mcrender_scene::image_io::{read_image, write_image, ImageRgb};
+use mcrender_formats::image_io::{read_image, write_image, ImageRgb};
 
 /// Options of `mcrender convert`.
 #[derive(Args, Debug)]

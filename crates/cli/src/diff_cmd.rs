@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use mcrender_core::color::Rgb;
 use mcrender_core::film::{downsample_box, pixel_rel_error, ImageComparison, DEFAULT_BLOCK};
-use mcrender_scene::image_io::{read_image, write_image, ImageRgb};
+use mcrender_formats::image_io::{read_image, write_image, ImageRgb};
 
 /// Lower end of the error image's scale: relative error 10^LOG_MIN and below is pure blue.
 const LOG_MIN: f64 = -3.0;

@@ -91,7 +91,7 @@ fn error_line(e: &anyhow::Error) -> String {
     for cause in e.chain() {
         let text = cause.to_string();
         let bare = match cause.downcast_ref::<std::io::Error>() {
-            Some(io) => mcrender_scene::io_error_text(io),
+            Some(io) => mcrender_formats::io_error_text(io),
             None => text.clone(),
         };
         if line.contains(bare.trim()) {
@@ -102,7 +102,7 @@ fn error_line(e: &anyhow::Error) -> String {
         }
         line.push_str(&text);
     }
-    mcrender_scene::tidy_message(&line)
+    mcrender_formats::tidy_message(&line)
 }
 
 #[cfg(test)]
@@ -112,7 +112,7 @@ mod tests {
     #[test]
     fn doubled_os_errors_are_printed_once() {
         let io = std::fs::File::open("/definitely/not/here").unwrap_err();
-        let img = mcrender_scene::ImageError::Io {
+        let img = mcrender_formats::ImageError::Io {
             path: "/definitely/not/here".into(),
             source: io,
         };

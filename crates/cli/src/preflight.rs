@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use mcrender_core::scene::{GeometryDesc, SceneDescription};
-use mcrender_scene::limits::{format_bytes, mesh_bytes};
-use mcrender_scene::{io_error_text, quoted};
+use mcrender_formats::limits::{format_bytes, mesh_bytes};
+use mcrender_formats::{io_error_text, quoted};
 
 /// Most worker threads accepted (far more than any CPU has cores; each thread costs a stack
 /// and start-up time, and 100,000 of them took 54 s to fail).

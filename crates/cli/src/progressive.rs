@@ -14,7 +14,7 @@ use anyhow::{bail, Context, Result};
 use mcrender_core::film::Film;
 use mcrender_core::render::{RenderError, RenderOptions, RenderOutput, RenderSession, RenderStats, Watch};
 use mcrender_core::scene::{Scene, SceneDescription};
-use mcrender_scene::image_io::{write_exr_layers_with_metadata, write_image, ImageRgb};
+use mcrender_formats::image_io::{write_exr_layers_with_metadata, write_image, ImageRgb};
 
 use crate::checkpoint::{self, Checkpoint, Invocation, Resume};
 use crate::interrupt;

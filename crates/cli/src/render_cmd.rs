@@ -9,7 +9,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrender_core::render::{RenderOptions, RenderOutput};
 use mcrender_core::scene::{IntegratorKind, Scene};
-use mcrender_scene::image_io::{write_images, ImageRgb};
+use mcrender_formats::image_io::{write_images, ImageRgb};
 
 use crate::builtin;
 use crate::preflight;

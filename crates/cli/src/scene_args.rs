@@ -7,9 +7,9 @@ use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
 use mcrender_core::scene::{MAX_PIXELS, MAX_RESOLUTION};
-use mcrender_scene::limits::LoadLimits;
-use mcrender_scene::pbrt::{load_str, LoadedScene};
-use mcrender_scene::{load_with, quoted, LoadOptions};
+use mcrender_formats::limits::LoadLimits;
+use mcrender_formats::pbrt::{load_str, LoadedScene};
+use mcrender_formats::{load_with, quoted, LoadOptions};
 
 use crate::builtin;
 

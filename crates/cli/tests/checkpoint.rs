@@ -171,7 +171,7 @@ fn sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     let reference = reference();
     let dir = interrupted_render("-INT", 130);
     let out = dir.path().join("out.exr");
-    let meta = mcrender_scene::image_io::read_exr_metadata(&out).unwrap();
+    let meta = mcrender_formats::image_io::read_exr_metadata(&out).unwrap();
     let spp: u32 = meta
         .iter()
         .find(|(k, _)| k == "mcrender.samplesPerPixel")
@@ -179,7 +179,7 @@ fn sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
         .expect("sample count in the EXR header");
     assert!(spp < 300, "{meta:?}");
     assert!(meta.contains(&("mcrender.samplesRequested".into(), SPP.into())));
-    let partial = mcrender_scene::image_io::read_exr(&out).unwrap();
+    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
     assert_eq!((partial.width, partial.height), (24, 24));
     if spp > 0 {
         assert!(
@@ -446,7 +446,7 @@ fn sppm_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     assert!(err.contains("SPPM iterations") && err.contains("--resume"), "{err}");
     assert_eq!(temp_files(d), Vec::<String>::new());
     let out = d.join("out.exr");
-    let meta = mcrender_scene::image_io::read_exr_metadata(&out).unwrap();
+    let meta = mcrender_formats::image_io::read_exr_metadata(&out).unwrap();
     let done: u32 = meta
         .iter()
         .find(|(k, _)| k == "mcrender.iterations")
@@ -454,7 +454,7 @@ fn sppm_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
         .expect("iteration count in the EXR header");
     assert!((1..100).contains(&done), "{meta:?}");
     assert!(meta.contains(&("mcrender.iterationsRequested".into(), "100".into())));
-    let partial = mcrender_scene::image_io::read_exr(&out).unwrap();
+    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
     assert!(
         partial.pixels.iter().any(|p| p.r > 0.0),
         "the partial image has content"
@@ -546,7 +546,7 @@ fn mlt_killed_after_a_checkpoint_resumes_to_the_same_bytes() {
 
 /// The count under `key` in an EXR's header.
 fn exr_count(path: &Path, key: &str) -> u64 {
-    let meta = mcrender_scene::image_io::read_exr_metadata(path).unwrap();
+    let meta = mcrender_formats::image_io::read_exr_metadata(path).unwrap();
     meta.iter()
         .find(|(k, _)| k == key)
         .map(|(_, v)| v.parse().unwrap())
@@ -573,7 +573,7 @@ fn mlt_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     let done = exr_count(&out, "mcrender.mutations");
     assert!((1..MLT_MUTATIONS).contains(&done), "{done} mutations");
     assert_eq!(exr_count(&out, "mcrender.mutationsRequested"), MLT_MUTATIONS);
-    let partial = mcrender_scene::image_io::read_exr(&out).unwrap();
+    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
     assert_eq!((partial.width, partial.height), (24, 24));
     assert!(
         partial.pixels.iter().any(|p| p.r > 0.0),
@@ -627,7 +627,7 @@ fn mlt_sigterm_without_checkpoint_writes_the_partial_image() {
     assert!(err.contains("SIGTERM") && err.contains("out.exr.ckpt"), "{err}");
     let out = d.join("out.exr");
     assert!(exr_count(&out, "mcrender.mutations") < MLT_MUTATIONS);
-    assert_eq!(mcrender_scene::image_io::read_exr(&out).unwrap().width, 24);
+    assert_eq!(mcrender_formats::image_io::read_exr(&out).unwrap().width, 24);
     assert_eq!(temp_files(d), Vec::<String>::new());
     let o = resume(d, "out.exr.ckpt", &[]);
     assert!(o.status.success(), "{}", stderr(&o));

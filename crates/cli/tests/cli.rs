@@ -165,7 +165,7 @@ fn sampler_override_changes_the_samples_but_not_the_picture() {
             dir.path(),
         );
         assert!(o.status.success(), "{}", stderr(&o));
-        let img = mcrender_scene::image_io::read_exr(&dir.path().join(&out)).unwrap();
+        let img = mcrender_formats::image_io::read_exr(&dir.path().join(&out)).unwrap();
         means.push(img.pixels.iter().map(|p| f64::from(p.luminance())).sum::<f64>() / img.pixels.len() as f64);
     }
     // Three unbiased estimates of one image: their means agree to within the noise (a few %).

@@ -6,7 +6,7 @@ mod common;
 use common::{mcrender, stderr};
 
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::{read_image, write_image, ImageRgb};
+use mcrender_formats::image_io::{read_image, write_image, ImageRgb};
 
 #[test]
 fn downsamples_and_scales() {

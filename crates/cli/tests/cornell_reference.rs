@@ -20,8 +20,8 @@ use std::path::PathBuf;
 
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene};
-use mcrender_scene::image_io::read_exr;
-use mcrender_scene::pbrt::load_file;
+use mcrender_formats::image_io::read_exr;
+use mcrender_formats::pbrt::load_file;
 
 const RES: u32 = 256;
 const SPP: u32 = 256;

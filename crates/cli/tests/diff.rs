@@ -10,7 +10,7 @@ use std::process::Output;
 use common::{mcrender, stderr};
 
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_formats::image_io::{write_image, ImageRgb};
 
 fn write(dir: &Path, name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> Rgb) {
     let mut img = ImageRgb::new(w, h);

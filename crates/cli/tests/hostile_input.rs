@@ -275,7 +275,7 @@ fn max_memory_refuses_a_mitsuba_scene_with_a_big_texture_before_loading_it() {
 
 /// `--max-memory` covers an OBJ scene's textures too (its loader reported them as 0
 /// bytes): a 16384x16384 `map_Kd` is refused from its header, before it is decoded or
-/// anything rendered (glTF images: `crates/scene/tests/gltf_loader.rs`).
+/// anything rendered (glTF images: `crates/formats/tests/gltf_loader.rs`).
 #[test]
 fn max_memory_refuses_an_obj_scene_with_a_big_texture_before_loading_it() {
     let dir = tempfile::tempdir().unwrap();

@@ -11,8 +11,8 @@ use mcrender_core::integrator::sppm::{render_with_threads, SppmSettings};
 use mcrender_core::math::Vec2;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{FilterDesc, IntegratorKind, SamplerKind, Scene, SceneDescription};
-use mcrender_scene::image_io::read_exr;
-use mcrender_scene::pbrt::load_file;
+use mcrender_formats::image_io::read_exr;
+use mcrender_formats::pbrt::load_file;
 
 fn repo_file(rel: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)

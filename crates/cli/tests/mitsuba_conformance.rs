@@ -22,8 +22,8 @@ use std::time::Instant;
 use mcrender_core::color::Rgb;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::Scene;
-use mcrender_scene::image_io::read_exr;
-use mcrender_scene::{load_with, LoadOptions};
+use mcrender_formats::image_io::read_exr;
+use mcrender_formats::{load_with, LoadOptions};
 
 /// Scenes (file stems) that pass Mitsuba's test.
 const EXPECTED_PASS: &[&str] = &[

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use mcrender_core::color::Rgb;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene};
-use mcrender_scene::load;
+use mcrender_formats::load;
 
 const SIZE: u32 = 64;
 const SPP: u32 = 128;

@@ -7,7 +7,7 @@ mod common;
 use std::path::Path;
 
 use common::{mcrender, stderr};
-use mcrender_scene::image_io::read_exr;
+use mcrender_formats::image_io::read_exr;
 
 /// The camera inside a closed sphere emitting 1 with albedo 1/2: up to depth 3 the
 /// radiance is (1 - 2^-4) / (1 - 1/2) = 1.875 everywhere. A box filter one pixel wide, so

@@ -56,7 +56,7 @@ fn a_gltf_scene_renders_to_its_emitted_radiance() {
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let img = mcrender_scene::read_image(&dir.path().join("out.exr")).unwrap();
+    let img = mcrender_formats::read_image(&dir.path().join("out.exr")).unwrap();
     assert_eq!((img.width, img.height), (16, 16));
     for y in 0..16 {
         for x in 0..16 {
@@ -106,8 +106,8 @@ fn an_obj_renders_with_the_default_camera_and_light_said_on_stderr() {
     );
     // The grey square fills the middle of the image under a white sky and sees nothing
     // else: 0.5 reflected, within 4 standard errors (from the variance of the mean).
-    let img = mcrender_scene::read_image(&dir.path().join("out.exr")).unwrap();
-    let var = mcrender_scene::read_image(&dir.path().join("var.exr")).unwrap();
+    let img = mcrender_formats::read_image(&dir.path().join("out.exr")).unwrap();
+    let var = mcrender_formats::read_image(&dir.path().join("var.exr")).unwrap();
     let (mut sum, mut v) = (0.0f64, 0.0f64);
     for (x, y) in [(3, 3), (3, 4), (4, 3), (4, 4)] {
         sum += f64::from(img.get(x, y).g) / 4.0;

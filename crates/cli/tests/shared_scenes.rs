@@ -10,8 +10,8 @@ use mcrender_core::color::Rgb;
 use mcrender_core::film::{block_means_of, downsample_box, ImageComparison, BLOCK_REL_EPSILON};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::{MaterialDesc, Scene, SceneDescription};
-use mcrender_scene::image_io::{read_exr, ImageRgb};
-use mcrender_scene::pbrt::load_file;
+use mcrender_formats::image_io::{read_exr, ImageRgb};
+use mcrender_formats::pbrt::load_file;
 
 const BLOCK: u32 = 8;
 

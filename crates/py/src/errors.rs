@@ -5,7 +5,7 @@
 use mcrender_core::lab::LabError;
 use mcrender_core::render::RenderError;
 use mcrender_core::scene::BuildError;
-use mcrender_scene::{ImageError, SceneErrorKind};
+use mcrender_formats::{ImageError, SceneErrorKind};
 use pyo3::exceptions::{PyException, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -19,7 +19,7 @@ pyo3::create_exception!(
 );
 
 /// The Python `SceneError` for a loader error, its location as attributes.
-pub fn scene_error(py: Python<'_>, e: &mcrender_scene::SceneError) -> PyErr {
+pub fn scene_error(py: Python<'_>, e: &mcrender_formats::SceneError) -> PyErr {
     let err = SceneError::new_err(e.to_string());
     let value = err.value(py);
     let loc = &e.location;

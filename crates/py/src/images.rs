@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::ImageRgb;
+use mcrender_formats::image_io::ImageRgb;
 use numpy::{PyArray3, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -17,7 +17,7 @@ use crate::film::rgb_array;
 #[pyfunction]
 pub fn read_image<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let img = py
-        .detach(|| mcrender_scene::read_image(&path))
+        .detach(|| mcrender_formats::read_image(&path))
         .map_err(|e| image_error(&e))?;
     rgb_array(py, img.width, img.height, &img.pixels)
 }
@@ -47,6 +47,6 @@ pub fn array_pixels(array: &PyReadonlyArray3<'_, f32>, what: &str) -> PyResult<(
 pub fn write_image(py: Python<'_>, path: PathBuf, array: PyReadonlyArray3<'_, f32>) -> PyResult<()> {
     let (width, height, pixels) = array_pixels(&array, "write_image")?;
     let img = ImageRgb { width, height, pixels };
-    py.detach(|| mcrender_scene::write_image(&path, &img))
+    py.detach(|| mcrender_formats::write_image(&path, &img))
         .map_err(|e| image_error(&e))
 }

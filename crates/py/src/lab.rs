@@ -84,7 +84,7 @@ pub fn compare<'py>(
         None => None,
         Some(Reference::Path(p)) => {
             let img = py
-                .detach(|| mcrender_scene::read_exr(&p))
+                .detach(|| mcrender_formats::read_exr(&p))
                 .map_err(|e| image_error(&e))?;
             if (img.width, img.height) != (w, h) {
                 return Err(PyValueError::new_err(format!(

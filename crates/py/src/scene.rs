@@ -30,7 +30,7 @@ pub struct PyScene {
 #[pyfunction]
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
     let loaded = py
-        .detach(|| mcrender_scene::load(&path))
+        .detach(|| mcrender_formats::load(&path))
         .map_err(|e| scene_error(py, &e))?;
     Ok(PyScene {
         desc: loaded.description,

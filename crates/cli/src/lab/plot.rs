@@ -9,7 +9,7 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
 use mcrender_core::color::{srgb_to_linear, Rgb};
-use mcrender_scene::image_io::{write_image, ImageRgb};
+use mcrender_formats::image_io::{write_image, ImageRgb};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;

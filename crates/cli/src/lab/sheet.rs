@@ -5,7 +5,7 @@
 
 use anyhow::{bail, Result};
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::ImageRgb;
+use mcrender_formats::image_io::ImageRgb;
 
 use super::font::{draw_text, sans, text_width};
 

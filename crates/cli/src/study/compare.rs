@@ -20,7 +20,7 @@ use mcrender_core::lab::{
     REFERENCE_FACTOR,
 };
 use mcrender_core::scene::{DirectStrategy, IntegratorKind, SamplerKind, SceneDescription};
-use mcrender_scene::image_io::ImageRgb;
+use mcrender_formats::image_io::ImageRgb;
 
 use super::{film_image, load_reference, write_into};
 use crate::lab::plot::{convergence_plot, log_log_plot};

@@ -12,7 +12,7 @@ use anyhow::{Context, Result};
 use mcrender_core::color::Rgb;
 use mcrender_core::film::Film;
 pub use mcrender_core::lab::render_in_waves;
-use mcrender_scene::image_io::{read_exr, write_image, ImageRgb};
+use mcrender_formats::image_io::{read_exr, write_image, ImageRgb};
 
 /// The film's estimate as an image.
 pub fn film_image(film: &Film) -> ImageRgb {

@@ -6,7 +6,7 @@ use std::path::Path;
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::{LightDesc, MaterialDesc};
 use mcrender_core::texture::Texture;
-use mcrender_scene::{load, LoadedScene};
+use mcrender_formats::{load, LoadedScene};
 
 const QUADS: &str = "mtllib scene.mtl
 v 0 0 0

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Vec3;
 use mcrender_core::scene::{FilterDesc, GeometryDesc, MaterialDesc, SamplerKind, SceneDescription};
-use mcrender_scene::pbrt::{load_file, LoadedScene};
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::{load_file, LoadedScene};
+use mcrender_formats::SceneErrorKind;
 
 fn cornell_copy() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt")
@@ -224,7 +224,7 @@ fn coffee_geometry_loads_once_its_materials_are_diffuse() {
             "\"string type\" [ \"diffuse\" ]",
         );
     }
-    let scene = mcrender_scene::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee).unwrap_or_else(|e| panic!("{e}"));
+    let scene = mcrender_formats::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee).unwrap_or_else(|e| panic!("{e}"));
     let d = &scene.description;
     let plymeshes = src.matches("Shape \"plymesh\"").count();
     let trianglemeshes = src.matches("Shape \"trianglemesh\"").count();
@@ -260,7 +260,7 @@ fn veach_mis_geometry_loads_once_its_materials_are_diffuse() {
     let src = std::fs::read_to_string(veach.join("scene-v4.pbrt"))
         .unwrap()
         .replace("\"string type\" [ \"conductor\" ]", "\"string type\" [ \"diffuse\" ]");
-    let scene = mcrender_scene::pbrt::load_str(&src, "veach.pbrt", &veach).unwrap_or_else(|e| panic!("{e}"));
+    let scene = mcrender_formats::pbrt::load_str(&src, "veach.pbrt", &veach).unwrap_or_else(|e| panic!("{e}"));
     let d = &scene.description;
     assert_eq!(d.shapes.len(), 9);
     let spheres: Vec<_> = d

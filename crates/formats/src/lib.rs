@@ -1,4 +1,4 @@
-//! mcrender-scene: loaders that turn scene files into the plain
+//! mcrender-formats: loaders that turn scene files into the plain
 //! [`SceneDescription`](mcrender_core::scene::SceneDescription) the core renders, and the
 //! image writers and readers (PNG, EXR).
 //!

@@ -8,7 +8,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::math::Vec3;
 use mcrender_core::scene::{GeometryDesc, LightDesc, MaterialDesc, TriangleMeshDesc};
 use mcrender_core::texture::Texture;
-use mcrender_scene::{load, LoadedScene};
+use mcrender_formats::{load, LoadedScene};
 use serde_json::{json, Value};
 
 /// One triangle's binary data: positions (36 bytes), normals (36), uvs (24), u16 indices (6 + 2 padding).
@@ -509,7 +509,7 @@ fn png_header(n: u32) -> Vec<u8> {
 /// the figure and the limit; a small one is counted.
 #[test]
 fn gltf_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
-    use mcrender_scene::limits::{image_texture_bytes, LoadLimits};
+    use mcrender_formats::limits::{image_texture_bytes, LoadLimits};
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("big.png"), png_header(16384)).unwrap();
     write_png(dir.path(), "small.png", &[[255, 0, 0], [0, 255, 0]]);
@@ -519,11 +519,11 @@ fn gltf_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
     doc["materials"] = json!([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]);
     doc["meshes"][0]["primitives"][0]["material"] = json!(0);
     let path = write(dir.path(), &doc);
-    let options = mcrender_scene::LoadOptions {
+    let options = mcrender_formats::LoadOptions {
         limits: LoadLimits { max_memory: 1 << 30 },
-        ..mcrender_scene::LoadOptions::default()
+        ..mcrender_formats::LoadOptions::default()
     };
-    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    let err = mcrender_formats::load_with(&path, &options).unwrap_err().to_string();
     assert!(
         err.contains("images[0], 16384x16384") && err.contains("memory limit of 1.0 GiB"),
         "{err}"
@@ -535,6 +535,6 @@ fn gltf_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
 
     doc["images"] = json!([{"uri": "small.png"}]);
     let path = write(dir.path(), &doc);
-    let loaded = mcrender_scene::load_with(&path, &options).unwrap();
+    let loaded = mcrender_formats::load_with(&path, &options).unwrap();
     assert_eq!(loaded.image_bytes, image_texture_bytes(2, 1));
 }

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use mcrender_core::math::{Vec2, Vec3};
 use mcrender_core::scene::{GeometryDesc, TriangleMeshDesc};
-use mcrender_scene::pbrt::load_str;
-use mcrender_scene::ply::read_ply;
+use mcrender_formats::pbrt::load_str;
+use mcrender_formats::ply::read_ply;
 
 /// Vertices of a unit quad at z = 0 (x, y, z, nx, ny, nz, u, v), then a triangle.
 const VERTICES: [[f32; 8]; 5] = [
@@ -186,6 +186,6 @@ fn plymesh_at_the_end_of_an_included_file_falls_back_to_that_files_directory() {
         "WorldBegin\nInclude \"sub/geo.pbrt\"\nShape \"sphere\"\n",
     )
     .unwrap();
-    let scene = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_or_else(|e| panic!("{e}"));
+    let scene = mcrender_formats::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.description.shapes.len(), 2);
 }

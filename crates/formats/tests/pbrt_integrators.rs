@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use mcrender_core::scene::{IntegratorKind, MltDesc, SppmDesc};
-use mcrender_scene::pbrt::{load_str, LoadedScene};
+use mcrender_formats::pbrt::{load_str, LoadedScene};
 
 /// Loads `src` followed by a world with a light (so that only integrator warnings remain).
 fn load(src: &str) -> LoadedScene {

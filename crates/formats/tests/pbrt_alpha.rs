@@ -5,10 +5,10 @@ use std::path::Path;
 
 use mcrender_core::scene::{FloatTexture, SceneDescription};
 use mcrender_core::texture::Texture;
-use mcrender_scene::pbrt::{load_str, LoadedScene};
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::{load_str, LoadedScene};
+use mcrender_formats::SceneErrorKind;
 
-fn load(body: &str) -> Result<LoadedScene, mcrender_scene::SceneError> {
+fn load(body: &str) -> Result<LoadedScene, mcrender_formats::SceneError> {
     load_str(&format!("WorldBegin\n{body}"), "scene.pbrt", Path::new(""))
 }
 

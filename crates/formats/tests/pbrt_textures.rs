@@ -8,10 +8,10 @@ use mcrender_core::math::Vec2;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{MaterialDesc, Scene};
 use mcrender_core::texture::{MipFilter, RgbTexture, Texture, TextureContext, TextureMapping, WrapMode};
-use mcrender_scene::pbrt::{load_str, LoadedScene};
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::{load_str, LoadedScene};
+use mcrender_formats::SceneErrorKind;
 
-fn load(body: &str, dir: &Path) -> Result<LoadedScene, mcrender_scene::SceneError> {
+fn load(body: &str, dir: &Path) -> Result<LoadedScene, mcrender_formats::SceneError> {
     load_str(&format!("WorldBegin\n{body}\nShape \"sphere\""), "scene.pbrt", dir)
 }
 

@@ -1,12 +1,12 @@
 //! Replays the fuzzers' kept inputs on stable, through the same entry points as the
-//! cargo-fuzz targets (`mcrender_scene::fuzzing`): every file of `fuzz/seeds/TARGET` and
+//! cargo-fuzz targets (`mcrender_formats::fuzzing`): every file of `fuzz/seeds/TARGET` and
 //! `fuzz/regressions/TARGET` (the inputs that once crashed, hung or ran out of memory, each
 //! fixed) must return without a panic and quickly.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use mcrender_scene::fuzzing::{run, TARGETS};
+use mcrender_formats::fuzzing::{run, TARGETS};
 
 /// An input that takes longer than this is a hang (libFuzzer's limit in bench/fuzz.sh is 10 s).
 const SLOW: Duration = Duration::from_secs(10);
@@ -58,8 +58,8 @@ fn every_kept_fuzz_input_replays_without_panic_or_hang() {
 
 #[test]
 fn loader_inputs_split_into_named_files() {
-    use mcrender_scene::source::FileSource;
-    let files = mcrender_scene::fuzzing::split_files(b"scene\n--8<-- a.ply\nply\n--8<-- t.png\n\x89PNG");
+    use mcrender_formats::source::FileSource;
+    let files = mcrender_formats::fuzzing::split_files(b"scene\n--8<-- a.ply\nply\n--8<-- t.png\n\x89PNG");
     assert_eq!(files.read(Path::new("fuzz.pbrt")).unwrap(), b"scene");
     assert_eq!(files.read(Path::new("a.ply")).unwrap(), b"ply");
     assert_eq!(files.read(Path::new("t.png")).unwrap(), b"\x89PNG");
@@ -69,11 +69,11 @@ fn loader_inputs_split_into_named_files() {
 fn loader_seeds_load_so_the_fuzzer_starts_from_working_scenes() {
     use std::sync::Arc;
 
-    use mcrender_scene::pbrt::{load_file_with, LoadOptions};
+    use mcrender_formats::pbrt::{load_file_with, LoadOptions};
     for path in files(&fuzz_dir().join("seeds/loader")) {
         let data = std::fs::read(&path).unwrap();
         let options = LoadOptions {
-            files: Arc::new(mcrender_scene::fuzzing::split_files(&data)),
+            files: Arc::new(mcrender_formats::fuzzing::split_files(&data)),
             ..LoadOptions::default()
         };
         let scene =
@@ -91,13 +91,13 @@ fn loader_seeds_load_so_the_fuzzer_starts_from_working_scenes() {
 fn mitsuba_seeds_load_from_memory() {
     use std::sync::Arc;
 
-    use mcrender_scene::fuzzing::{split_files_with_top, MITSUBA_SCENE};
-    use mcrender_scene::limits::LoadLimits;
+    use mcrender_formats::fuzzing::{split_files_with_top, MITSUBA_SCENE};
+    use mcrender_formats::limits::LoadLimits;
     let mut loaded = 0;
     let seeds = files(&fuzz_dir().join("seeds/mitsuba"));
     for path in &seeds {
         let files = Arc::new(split_files_with_top(&std::fs::read(path).unwrap(), MITSUBA_SCENE));
-        match mcrender_scene::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files) {
+        match mcrender_formats::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files) {
             Ok(scene) => {
                 let d = &scene.description;
                 assert!(!(d.shapes.is_empty() && d.instances.is_empty()), "{}", path.display());
@@ -114,7 +114,7 @@ fn mitsuba_seeds_load_from_memory() {
     );
     let own = fuzz_dir().join("seeds/mitsuba/include-ref-obj-ply-bitmap");
     let files = Arc::new(split_files_with_top(&std::fs::read(own).unwrap(), MITSUBA_SCENE));
-    let scene = mcrender_scene::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files)
+    let scene = mcrender_formats::mitsuba::load_file_from(Path::new(MITSUBA_SCENE), &[], LoadLimits::default(), files)
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.description.shapes.len(), 4);
     assert!(scene.image_bytes > 0, "the bitmap was read from memory");

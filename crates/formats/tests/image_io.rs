@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::{read_exr, write_exr_layers, write_image, ImageError, ImageRgb};
+use mcrender_formats::image_io::{read_exr, write_exr_layers, write_image, ImageError, ImageRgb};
 
 fn gradient(width: u32, height: u32) -> ImageRgb {
     let pixels = (0..width * height)

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use mcrender_scene::pbrt::load_str;
-use mcrender_scene::ply::read_ply_bytes;
+use mcrender_formats::pbrt::load_str;
+use mcrender_formats::ply::read_ply_bytes;
 use proptest::prelude::*;
 
 const CORNELL: &str = include_str!("../../../scenes/cornell-box/scene-v4.pbrt");

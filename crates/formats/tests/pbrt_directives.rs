@@ -8,7 +8,7 @@ use mcrender_core::math::{Mat4, Vec2, Vec3};
 use mcrender_core::scene::{
     AreaLightDesc, FilterDesc, GeometryDesc, LightDesc, MaterialDesc, SamplerKind, ShapeDesc, TriangleMeshDesc,
 };
-use mcrender_scene::pbrt::{load_str, LoadedScene};
+use mcrender_formats::pbrt::{load_str, LoadedScene};
 
 fn load(src: &str) -> LoadedScene {
     match load_str(src, "scene.pbrt", Path::new("")) {
@@ -582,13 +582,13 @@ fn include_is_relative_to_the_scene_directory_and_errors_name_the_included_file(
         "WorldBegin\nAttributeBegin\nInclude \"sub/shapes.pbrt\"\nAttributeEnd\nShape \"sphere\"\n",
     )
     .unwrap();
-    let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
+    let s = mcrender_formats::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
     assert_eq!(s.description.shapes.len(), 3);
     assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::Z));
     assert_eq!(sphere_matrix(&s, 2), Mat4::IDENTITY);
 
     std::fs::write(dir.path().join("sub/more.pbrt"), "\n  Shape \"cube\"\n").unwrap();
-    let err = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_err();
+    let err = mcrender_formats::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap_err();
     let included = dir.path().join("sub/more.pbrt");
     assert_eq!(
         err.to_string(),
@@ -607,7 +607,7 @@ fn include_falls_back_to_the_including_file_directory() {
     std::fs::write(dir.path().join("sub/a.pbrt"), "Include \"b.pbrt\"\n").unwrap();
     std::fs::write(dir.path().join("sub/b.pbrt"), "Shape \"sphere\"\n").unwrap();
     std::fs::write(dir.path().join("main.pbrt"), "WorldBegin\nInclude \"sub/a.pbrt\"\n").unwrap();
-    let s = mcrender_scene::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
+    let s = mcrender_formats::pbrt::load_file(&dir.path().join("main.pbrt")).unwrap();
     assert_eq!(s.description.shapes.len(), 1);
 }
 
@@ -615,7 +615,7 @@ fn include_falls_back_to_the_including_file_directory() {
 fn recursive_include_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("a.pbrt"), "Include \"a.pbrt\"\n").unwrap();
-    let err = mcrender_scene::pbrt::load_file(&dir.path().join("a.pbrt")).unwrap_err();
+    let err = mcrender_formats::pbrt::load_file(&dir.path().join("a.pbrt")).unwrap_err();
     assert!(err.to_string().contains("nested too deeply"), "{err}");
 }
 

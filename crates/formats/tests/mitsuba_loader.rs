@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Vec3;
 use mcrender_core::scene::{GeometryDesc, IntegratorKind, LightDesc, MaterialDesc};
-use mcrender_scene::{load, load_with, LoadOptions, LoadedScene, SceneError, SceneErrorKind};
+use mcrender_formats::{load, load_with, LoadOptions, LoadedScene, SceneError, SceneErrorKind};
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);

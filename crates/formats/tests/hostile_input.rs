@@ -4,9 +4,9 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use mcrender_core::color::Rgb;
-use mcrender_scene::image_io::{write_images, ImageRgb};
-use mcrender_scene::limits::LoadLimits;
-use mcrender_scene::pbrt::{load_file, load_file_with, LoadOptions};
+use mcrender_formats::image_io::{write_images, ImageRgb};
+use mcrender_formats::limits::LoadLimits;
+use mcrender_formats::pbrt::{load_file, load_file_with, LoadOptions};
 
 /// An uncompressed 24-bit TGA of `n` x `n` (a gradient, so it is not all one value).
 fn write_tga(path: &Path, n: u16) {
@@ -120,12 +120,12 @@ fn write_mitsuba_scene(dir: &Path, texture: &str, envmap: &str) -> std::path::Pa
 /// envmaps now count as the pbrt loader's do.
 #[test]
 fn mitsuba_images_are_counted_not_reported_as_zero_bytes() {
-    use mcrender_scene::limits::{env_image_bytes, image_texture_bytes};
+    use mcrender_formats::limits::{env_image_bytes, image_texture_bytes};
     let dir = tempfile::tempdir().unwrap();
     write_tga(&dir.path().join("t.tga"), 64);
     write_tga(&dir.path().join("e.tga"), 32);
     let path = write_mitsuba_scene(dir.path(), "t.tga", "e.tga");
-    let loaded = mcrender_scene::load(&path).unwrap();
+    let loaded = mcrender_formats::load(&path).unwrap();
     assert_eq!(
         loaded.image_bytes,
         image_texture_bytes(64, 64) + env_image_bytes(32, 32)
@@ -144,11 +144,11 @@ fn mitsuba_texture_8192_is_refused_before_decoding() {
     std::fs::write(dir.path().join("big.tga"), header).unwrap();
     write_tga(&dir.path().join("e.tga"), 8);
     let path = write_mitsuba_scene(dir.path(), "big.tga", "e.tga");
-    let options = mcrender_scene::LoadOptions {
+    let options = mcrender_formats::LoadOptions {
         limits: LoadLimits { max_memory: 1 << 30 },
-        ..mcrender_scene::LoadOptions::default()
+        ..mcrender_formats::LoadOptions::default()
     };
-    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    let err = mcrender_formats::load_with(&path, &options).unwrap_err().to_string();
     assert!(
         err.contains("scene.xml:4:")
             && err.contains("\"big.tga\" (8192x8192)")
@@ -157,7 +157,7 @@ fn mitsuba_texture_8192_is_refused_before_decoding() {
     );
     assert_eq!(err.lines().count(), 1, "{err}");
     // Without the limit it is read, and fails as the truncated file it is (not an abort).
-    let err = mcrender_scene::load(&path).unwrap_err().to_string();
+    let err = mcrender_formats::load(&path).unwrap_err().to_string();
     assert!(err.contains("cannot read image \"big.tga\""), "{err}");
 }
 
@@ -186,12 +186,12 @@ fn obj_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
     header.extend([24, 0]);
     std::fs::write(dir.path().join("big.tga"), header).unwrap();
     let path = write_obj_scene(dir.path(), "big.tga");
-    let options = mcrender_scene::LoadOptions {
+    let options = mcrender_formats::LoadOptions {
         limits: LoadLimits { max_memory: 1 << 30 },
-        ..mcrender_scene::LoadOptions::default()
+        ..mcrender_formats::LoadOptions::default()
     };
     let start = Instant::now();
-    let err = mcrender_scene::load_with(&path, &options).unwrap_err().to_string();
+    let err = mcrender_formats::load_with(&path, &options).unwrap_err().to_string();
     assert!(
         err.contains("big.tga\" (16384x16384)") && err.contains("memory limit of 1.0 GiB"),
         "{err}"
@@ -199,11 +199,11 @@ fn obj_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(start.elapsed() < Duration::from_secs(5), "{:?}", start.elapsed());
     // Without the limit it is read, and fails as the truncated file it is (not an abort).
-    let err = mcrender_scene::load(&path).unwrap_err().to_string();
+    let err = mcrender_formats::load(&path).unwrap_err().to_string();
     assert!(err.contains("cannot read texture"), "{err}");
 
     write_tga(&dir.path().join("small.tga"), 16);
     let path = write_obj_scene(dir.path(), "small.tga");
-    let loaded = mcrender_scene::load_with(&path, &options).unwrap();
-    assert_eq!(loaded.image_bytes, mcrender_scene::limits::image_texture_bytes(16, 16));
+    let loaded = mcrender_formats::load_with(&path, &options).unwrap();
+    assert_eq!(loaded.image_bytes, mcrender_formats::limits::image_texture_bytes(16, 16));
 }

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::{MaterialDesc, SceneDescription};
-use mcrender_scene::pbrt::load_str;
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::load_str;
+use mcrender_formats::SceneErrorKind;
 
 fn load(src: &str) -> (SceneDescription, Vec<String>) {
     let s = load_str(src, "scene.pbrt", Path::new("")).unwrap_or_else(|e| panic!("{e}"));

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use mcrender_scene::pbrt::load_str;
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::load_str;
+use mcrender_formats::SceneErrorKind;
 
 /// The error message for `src`, loaded as `scene.pbrt`.
 fn error(src: &str) -> String {
@@ -368,7 +368,7 @@ fn bad_utf8_reports_its_position() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.pbrt");
     std::fs::write(&path, b"WorldBegin\n  Shape \xff").unwrap();
-    let err = mcrender_scene::pbrt::load_file(&path).unwrap_err();
+    let err = mcrender_formats::pbrt::load_file(&path).unwrap_err();
     assert_eq!(
         err.to_string(),
         format!("{}:2:9: the file is not valid UTF-8", path.display())

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::MaterialDesc;
-use mcrender_scene::pbrt::load_str;
-use mcrender_scene::SceneErrorKind;
+use mcrender_formats::pbrt::load_str;
+use mcrender_formats::SceneErrorKind;
 
 /// The material of a sphere given `Material <decl>`, and the warnings.
 fn material(decl: &str) -> (MaterialDesc, Vec<String>) {

@@ -8,8 +8,8 @@ use std::path::Path;
 use mcrender_core::color::{srgb_to_linear, Rgb};
 use mcrender_core::math::{Mat4, Vec3};
 use mcrender_core::scene::{EnvMapping, ImageInfiniteLightDesc, LightDesc, Scene, SpotLightDesc};
-use mcrender_scene::pbrt::{load_str, LoadedScene};
-use mcrender_scene::{write_image, ImageRgb};
+use mcrender_formats::pbrt::{load_str, LoadedScene};
+use mcrender_formats::{write_image, ImageRgb};
 
 fn load_in(src: &str, dir: &Path) -> LoadedScene {
     match load_str(src, "scene.pbrt", dir) {
