@@ -205,5 +205,8 @@ fn obj_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
     write_tga(&dir.path().join("small.tga"), 16);
     let path = write_obj_scene(dir.path(), "small.tga");
     let loaded = mcrender_formats::load_with(&path, &options).unwrap();
-    assert_eq!(loaded.image_bytes, mcrender_formats::limits::image_texture_bytes(16, 16));
+    assert_eq!(
+        loaded.image_bytes,
+        mcrender_formats::limits::image_texture_bytes(16, 16)
+    );
 }

@@ -224,7 +224,8 @@ fn coffee_geometry_loads_once_its_materials_are_diffuse() {
             "\"string type\" [ \"diffuse\" ]",
         );
     }
-    let scene = mcrender_formats::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee).unwrap_or_else(|e| panic!("{e}"));
+    let scene =
+        mcrender_formats::pbrt::load_str(&src, "coffee-diffuse.pbrt", &coffee).unwrap_or_else(|e| panic!("{e}"));
     let d = &scene.description;
     let plymeshes = src.matches("Shape \"plymesh\"").count();
     let trianglemeshes = src.matches("Shape \"trianglemesh\"").count();
