@@ -5,6 +5,7 @@ distributed tests also check that every referenced file reaches the workers."""
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 from pathlib import Path
 
@@ -83,3 +84,13 @@ def scene_path(tmp_path_factory: pytest.TempPathFactory) -> Path:
     (root / "parts" / "world.pbrt").write_text(WORLD)
     (root / "meshes" / "occluder.ply").write_text(PLY)
     return root / "main.pbrt"
+
+
+@pytest.fixture
+def sigint_raises():
+    """SIGINT raises KeyboardInterrupt during the test, however pytest was started: a shell
+    running a job in the background (`cmd &` without job control) starts it with SIGINT
+    ignored, and Python then installs no handler of its own."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
