@@ -240,18 +240,23 @@ fn max_memory_flag_is_parsed_with_units() {
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
+/// `dir/big.tga`: only the header of a 16384x16384 24-bit TGA, so decoding would fail and a
+/// refusal must come from the header.
+fn write_big_tga_header(dir: &Path) {
+    let mut tga = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend(16384u16.to_le_bytes());
+    tga.extend([24, 0]);
+    std::fs::write(dir.join("big.tga"), tga).unwrap();
+}
+
 /// `--max-memory` covers a Mitsuba XML scene's bitmap textures too (its loader reported
 /// them as 0 bytes): a 16384x16384 texture is refused from its header, before it is
 /// decoded or anything rendered.
 #[test]
 fn max_memory_refuses_a_mitsuba_scene_with_a_big_texture_before_loading_it() {
     let dir = tempfile::tempdir().unwrap();
-    // Only the TGA header: decoding would fail, so a refusal must come from the header.
-    let mut tga = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
-    tga.extend(16384u16.to_le_bytes());
-    tga.extend(16384u16.to_le_bytes());
-    tga.extend([24, 0]);
-    std::fs::write(dir.path().join("big.tga"), tga).unwrap();
+    write_big_tga_header(dir.path());
     let xml = r#"<scene version="3.0.0">
 <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film></sensor>
 <shape type="sphere">
@@ -279,12 +284,7 @@ fn max_memory_refuses_a_mitsuba_scene_with_a_big_texture_before_loading_it() {
 #[test]
 fn max_memory_refuses_an_obj_scene_with_a_big_texture_before_loading_it() {
     let dir = tempfile::tempdir().unwrap();
-    // Only the TGA header: decoding would fail, so a refusal must come from the header.
-    let mut tga = vec![0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0];
-    tga.extend(16384u16.to_le_bytes());
-    tga.extend(16384u16.to_le_bytes());
-    tga.extend([24, 0]);
-    std::fs::write(dir.path().join("big.tga"), tga).unwrap();
+    write_big_tga_header(dir.path());
     std::fs::write(dir.path().join("m.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd big.tga\n").unwrap();
     std::fs::write(
         dir.path().join("scene.obj"),
