@@ -105,5 +105,31 @@ impl Filter {
     }
 }
 
+/// Bins of each axis's sampling table of the tabulated filters (Gaussian, Mitchell).
+const BINS: usize = 128;
+/// Simpson panels per bin when tabulating.
+const PANELS_PER_BIN: usize = 8;
+
+/// The sampling table of a separable filter's axis: the average of `g >= 0` over each of
+/// [`BINS`] bins of [-radius, radius], by composite Simpson with [`PANELS_PER_BIN`] panels.
+fn bin_averages(radius: f32, g: impl Fn(f64) -> f64) -> crate::sampling::PiecewiseConstant1D {
+    let r = f64::from(radius);
+    let width = 2.0 * r / BINS as f64;
+    let h = width / PANELS_PER_BIN as f64;
+    let averages: Vec<f32> = (0..BINS)
+        .map(|i| {
+            let a = -r + width * i as f64;
+            let integral: f64 = (0..PANELS_PER_BIN)
+                .map(|k| {
+                    let t0 = a + h * k as f64;
+                    h / 6.0 * (g(t0) + 4.0 * g(t0 + 0.5 * h) + g(t0 + h))
+                })
+                .sum();
+            (integral / width) as f32
+        })
+        .collect();
+    crate::sampling::PiecewiseConstant1D::new(&averages, -radius, radius)
+}
+
 #[cfg(test)]
 mod tests;

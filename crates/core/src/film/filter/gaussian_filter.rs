@@ -5,11 +5,6 @@ use super::FilterSample;
 use crate::math::Vec2;
 use crate::sampling::PiecewiseConstant1D;
 
-/// Bins of each axis's sampling table.
-const BINS: usize = 128;
-/// Simpson panels per bin when tabulating (the Gaussian is smooth inside a bin).
-const PANELS_PER_BIN: usize = 8;
-
 /// `g_x(x) g_y(y)` with `g(t) = max(0, G(t) - G(r))` and `G` the normal density of standard
 /// deviation `sigma`. Each axis is sampled from a table of the average of `g` over 128
 /// bins, so the weight `g(x) / bin average` is 1 on average (with the default radius 1.5
@@ -37,21 +32,7 @@ fn tabulate(radius: f32, sigma: f32) -> PiecewiseConstant1D {
     let (r, s) = (f64::from(radius), f64::from(sigma));
     let at_radius = gaussian(r, s);
     let g = |t: f64| (gaussian(t, s) - at_radius).max(0.0);
-    let width = 2.0 * r / BINS as f64;
-    let h = width / PANELS_PER_BIN as f64;
-    let averages: Vec<f32> = (0..BINS)
-        .map(|i| {
-            let a = -r + width * i as f64;
-            let integral: f64 = (0..PANELS_PER_BIN)
-                .map(|k| {
-                    let t0 = a + h * k as f64;
-                    h / 6.0 * (g(t0) + 4.0 * g(t0 + 0.5 * h) + g(t0 + h))
-                })
-                .sum();
-            (integral / width) as f32
-        })
-        .collect();
-    PiecewiseConstant1D::new(&averages, -radius, radius)
+    super::bin_averages(radius, g)
 }
 
 impl GaussianFilter {

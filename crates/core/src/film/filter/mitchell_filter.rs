@@ -6,11 +6,6 @@ use super::FilterSample;
 use crate::math::Vec2;
 use crate::sampling::PiecewiseConstant1D;
 
-/// Bins of each axis's sampling table.
-const BINS: usize = 128;
-/// Simpson panels per bin when tabulating.
-const PANELS_PER_BIN: usize = 8;
-
 /// The Mitchell-Netravali kernel with parameters `b`, `c` at `x` (zero for `|x| > 2`); it
 /// integrates to 1 over [-2, 2] for every `b`, `c`.
 #[inline]
@@ -43,21 +38,7 @@ pub struct MitchellFilter {
 fn tabulate(radius: f32, b: f32, c: f32) -> PiecewiseConstant1D {
     let r = f64::from(radius);
     let g = |t: f64| f64::from(kernel((2.0 * t / r) as f32, b, c)).abs();
-    let width = 2.0 * r / BINS as f64;
-    let h = width / PANELS_PER_BIN as f64;
-    let averages: Vec<f32> = (0..BINS)
-        .map(|i| {
-            let a = -r + width * i as f64;
-            let integral: f64 = (0..PANELS_PER_BIN)
-                .map(|k| {
-                    let t0 = a + h * k as f64;
-                    h / 6.0 * (g(t0) + 4.0 * g(t0 + 0.5 * h) + g(t0 + h))
-                })
-                .sum();
-            (integral / width) as f32
-        })
-        .collect();
-    PiecewiseConstant1D::new(&averages, -radius, radius)
+    super::bin_averages(radius, g)
 }
 
 impl MitchellFilter {
