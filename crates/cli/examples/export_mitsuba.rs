@@ -7,6 +7,7 @@
 //! Usage: `cargo run --release --example export_mitsuba -- SCENE.pbrt OUT_DIR`
 #![allow(missing_docs)]
 
+use mcrender_core::material::{ConductorMaterial, DiffuseMaterial};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -25,10 +26,10 @@ fn material_json(m: &MaterialDesc) -> Result<String> {
         None => bail!("no Mitsuba export for textures yet"),
     };
     Ok(match m {
-        MaterialDesc::Diffuse { reflectance } => {
+        MaterialDesc::Diffuse(DiffuseMaterial { reflectance }) => {
             format!(r#"{{"type":"diffuse","reflectance":{:?}}}"#, rgb(reflectance)?)
         }
-        MaterialDesc::Conductor {
+        MaterialDesc::Conductor(ConductorMaterial {
             eta,
             k,
             reflectance: None,
@@ -36,7 +37,7 @@ fn material_json(m: &MaterialDesc) -> Result<String> {
             v_roughness,
             remap_roughness,
             ..
-        } => {
+        }) => {
             let alpha = |r: f32| if *remap_roughness { r.max(0.0).sqrt() } else { r };
             format!(
                 r#"{{"type":"conductor","eta":{:?},"k":{:?},"alpha_u":{},"alpha_v":{}}}"#,

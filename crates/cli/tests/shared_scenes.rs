@@ -4,6 +4,7 @@
 //!
 //! References were rendered with up to 64 bounces, hence max depth 65 here.
 
+use mcrender_core::material::CoatedDiffuseMaterial;
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
@@ -309,9 +310,9 @@ fn coffee_matches_tungsten_once_the_coat_is_lossless() {
     let mut desc = loaded.description;
     let mut coats = 0;
     for m in &mut desc.materials {
-        if let MaterialDesc::CoatedDiffuse {
+        if let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             thickness, max_depth, ..
-        } = m
+        }) = m
         {
             *thickness = 1e-5.into();
             *max_depth = 100;

@@ -4,6 +4,7 @@
 //!
 //! `cargo run --release -p mcrender-core --example bilinear_vs_triangles`
 
+use mcrender_core::material::DiffuseMaterial;
 use std::time::Instant;
 
 use mcrender_core::color::Rgb;
@@ -23,9 +24,9 @@ fn scene(geometry: GeometryDesc) -> Scene {
         },
         sampler: SamplerDesc::default(),
         integrator: IntegratorDesc::default(),
-        materials: vec![MaterialDesc::Diffuse {
+        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::WHITE.into(),
-        }],
+        })],
         shapes: vec![ShapeDesc {
             geometry,
             material: 0,

@@ -3,6 +3,7 @@
 
 mod common;
 
+use mcrender_core::material::DiffuseMaterial;
 use std::sync::Arc;
 
 use common::*;
@@ -66,12 +67,12 @@ fn base_scene() -> SceneDescription {
     d.camera.fov_degrees = 60.0;
     d.sampler.samples_per_pixel = 8;
     d.integrator.max_depth = 3;
-    d.materials.push(MaterialDesc::Diffuse {
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::new(0.7, 0.5, 0.3).into(),
-    });
-    d.materials.push(MaterialDesc::Diffuse {
+    }));
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::new(0.2, 0.6, 0.8).into(),
-    });
+    }));
     // Floor, and a light above.
     let quad = |y: f32, s: f32, flip: bool| {
         GeometryDesc::TriangleMesh(TriangleMeshDesc {

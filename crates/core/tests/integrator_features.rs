@@ -29,6 +29,7 @@
 
 mod common;
 
+use mcrender_core::material::{CoatedConductorMaterial, CoatedDiffuseMaterial, DiffuseMaterial};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
@@ -77,9 +78,9 @@ fn room() -> SceneDescription {
         Rgb::new(0.4, 0.5, 0.6),
         Rgb::new(0.7, 0.7, 0.7),
     ] {
-        d.materials.push(MaterialDesc::Diffuse {
+        d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: rho.into(),
-        });
+        }));
     }
     let s = 2.0;
     d.shapes.push(quad(
@@ -201,7 +202,7 @@ fn variants() -> Vec<(&'static str, SceneDescription)> {
     v.push(("image infinite light", d));
 
     let mut d = room();
-    d.materials[3] = MaterialDesc::CoatedDiffuse {
+    d.materials[3] = MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance: Rgb::new(0.7, 0.3, 0.2).into(),
         u_roughness: 0.2.into(),
         v_roughness: 0.2.into(),
@@ -212,11 +213,11 @@ fn variants() -> Vec<(&'static str, SceneDescription)> {
         g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
-    };
+    });
     v.push(("coated diffuse", d));
 
     let mut d = room();
-    d.materials[3] = MaterialDesc::CoatedConductor {
+    d.materials[3] = MaterialDesc::CoatedConductor(CoatedConductorMaterial {
         interface_u_roughness: 0.2.into(),
         interface_v_roughness: 0.2.into(),
         interface_eta: 1.5,
@@ -231,13 +232,13 @@ fn variants() -> Vec<(&'static str, SceneDescription)> {
         g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
-    };
+    });
     v.push(("coated conductor", d));
 
     let mut d = room();
-    d.materials[1] = MaterialDesc::Diffuse {
+    d.materials[1] = MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: checks(6.0, Rgb::new(0.8, 0.7, 0.2), Rgb::new(0.1, 0.2, 0.5)),
-    };
+    });
     v.push(("checkerboard texture", d));
 
     let mut d = room();

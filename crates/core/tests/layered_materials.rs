@@ -8,6 +8,7 @@ mod common;
 use common::*;
 use mcrender_core::bsdf::fresnel::fr_dielectric;
 use mcrender_core::color::Rgb;
+use mcrender_core::material::{CoatedConductorMaterial, CoatedDiffuseMaterial, DiffuseMaterial, MixMaterial};
 use mcrender_core::math::{Mat4, Transform, Vec3, PI};
 use mcrender_core::scene::{
     AreaLightDesc, DirectStrategy, GeometryDesc, MaterialDesc, Scene, SceneDescription, ShapeDesc,
@@ -70,7 +71,7 @@ fn thin_coated_lambertian_under_a_sky_matches_its_closed_form_with_every_techniq
     let mut d = under_sky(sky);
     set_receiver_material(
         &mut d,
-        MaterialDesc::CoatedDiffuse {
+        MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             reflectance: Rgb::splat(r).into(),
             u_roughness: 0.0.into(),
             v_roughness: 0.0.into(),
@@ -81,7 +82,7 @@ fn thin_coated_lambertian_under_a_sky_matches_its_closed_form_with_every_techniq
             g: 0.0.into(),
             max_depth: 200,
             n_samples: 1,
-        },
+        }),
     );
     // The camera sees the receiver's centre from (1, 0.2, 0.3): cos theta_o = 0.2 / |eye|.
     let cos_o = 0.2 / Vec3::new(1.0, 0.2, 0.3).length();
@@ -105,17 +106,17 @@ fn mixes_reflect_the_mixture_of_their_materials() {
     let n = d.materials.len() as u32;
     // n-1: the receiver's diffuse 0.8; n: diffuse 0.2; n+1: their mix; n+2: a mix of the
     // mix and a black diffuse.
-    d.materials.push(MaterialDesc::Diffuse {
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::splat(0.2).into(),
-    });
-    d.materials.push(MaterialDesc::Mix {
+    }));
+    d.materials.push(MaterialDesc::Mix(MixMaterial {
         materials: [n - 1, n],
         amount: 0.25.into(),
-    });
-    d.materials.push(MaterialDesc::Mix {
+    }));
+    d.materials.push(MaterialDesc::Mix(MixMaterial {
         materials: [n + 1, 0],
         amount: 0.5.into(),
-    });
+    }));
     let receiver = d.shapes.len() - 1;
     for (material, albedo) in [
         (n + 1, 0.75 * 0.8 + 0.25 * 0.2),
@@ -126,18 +127,18 @@ fn mixes_reflect_the_mixture_of_their_materials() {
     }
     // amount 0 and 1 choose one material outright: noise-free.
     for (amount, albedo) in [(0.0, 0.8), (1.0, 0.2), (-3.0, 0.8), (7.0, 0.2)] {
-        d.materials[n as usize + 1] = MaterialDesc::Mix {
+        d.materials[n as usize + 1] = MaterialDesc::Mix(MixMaterial {
             materials: [n - 1, n],
             amount: amount.into(),
-        };
+        });
         d.shapes[receiver].material = n + 1;
         assert_close(&d, sky * albedo, &format!("amount {amount}"));
     }
     // A mix that contains itself is refused.
-    d.materials[n as usize + 1] = MaterialDesc::Mix {
+    d.materials[n as usize + 1] = MaterialDesc::Mix(MixMaterial {
         materials: [n - 1, n + 2],
         amount: 0.5.into(),
-    };
+    });
     let e = Scene::build(&d).unwrap_err().to_string();
     assert!(e.contains("contains itself"), "{e}");
 }
@@ -177,7 +178,7 @@ fn interface_surfaces_change_nothing() {
 
 #[test]
 fn invalid_layered_and_mix_parameters_are_refused() {
-    let coated = MaterialDesc::CoatedDiffuse {
+    let coated = MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance: Rgb::splat(0.5).into(),
         u_roughness: 0.0.into(),
         v_roughness: 0.0.into(),
@@ -188,8 +189,8 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
-    };
-    let conductor = MaterialDesc::CoatedConductor {
+    });
+    let conductor = MaterialDesc::CoatedConductor(CoatedConductorMaterial {
         interface_u_roughness: 0.0.into(),
         interface_v_roughness: 0.0.into(),
         interface_eta: 1.5,
@@ -204,7 +205,7 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
-    };
+    });
     let build = |m: MaterialDesc| {
         let mut d = under_sky(1.0);
         set_receiver_material(&mut d, m);
@@ -221,13 +222,13 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         ("roughness", -0.1),
     ] {
         let mut m = coated.clone();
-        if let MaterialDesc::CoatedDiffuse {
+        if let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             thickness,
             g,
             eta,
             u_roughness,
             ..
-        } = &mut m
+        }) = &mut m
         {
             match field {
                 "thickness" => *thickness = v.into(),
@@ -244,12 +245,12 @@ fn invalid_layered_and_mix_parameters_are_refused() {
         ("interface eta", f32::INFINITY),
     ] {
         let mut m = conductor.clone();
-        if let MaterialDesc::CoatedConductor {
+        if let MaterialDesc::CoatedConductor(CoatedConductorMaterial {
             albedo,
             conductor_k,
             interface_eta,
             ..
-        } = &mut m
+        }) = &mut m
         {
             match field {
                 "albedo" => *albedo = Rgb::splat(v).into(),
@@ -261,17 +262,17 @@ fn invalid_layered_and_mix_parameters_are_refused() {
     }
     bad.push((
         "mix amount NaN".into(),
-        MaterialDesc::Mix {
+        MaterialDesc::Mix(MixMaterial {
             materials: [0, 0],
             amount: f32::NAN.into(),
-        },
+        }),
     ));
     bad.push((
         "mix of a missing material".into(),
-        MaterialDesc::Mix {
+        MaterialDesc::Mix(MixMaterial {
             materials: [0, 99],
             amount: 0.5.into(),
-        },
+        }),
     ));
     for (label, m) in bad {
         let e = build(m).expect_err(&label);

@@ -8,6 +8,7 @@ mod common;
 use common::*;
 use mcrender_core::color::Rgb;
 use mcrender_core::integrator::{LightPathIntegrator, TraceStats};
+use mcrender_core::material::DiffuseMaterial;
 use mcrender_core::math::{Mat4, Transform, UVec2, Vec2, Vec3, PI};
 use mcrender_core::sampling::Sampler;
 use mcrender_core::scene::{
@@ -127,9 +128,9 @@ fn closed_emissive_sphere_has_radiance_le_over_one_minus_albedo() {
 fn uniform_sky_gives_radiance_rho_l() {
     let (rho, l) = (0.8f32, Rgb::new(1.5, 0.5, 1.0));
     let mut d = empty_scene();
-    d.materials.push(MaterialDesc::Diffuse {
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::splat(rho).into(),
-    });
+    }));
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
             positions: vec![

@@ -11,6 +11,7 @@
 
 mod common;
 
+use mcrender_core::material::DiffuseMaterial;
 use std::sync::atomic::AtomicBool;
 
 use common::*;
@@ -190,9 +191,9 @@ fn two_receivers() -> SceneDescription {
     let mut d = empty_scene();
     let (s, h, l) = (0.8f32, 1.0f32, 3.0f32);
     for (albedo, x0) in [(0.9f32, -0.1f32), (0.3, 0.0)] {
-        d.materials.push(MaterialDesc::Diffuse {
+        d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::splat(albedo).into(),
-        });
+        }));
         d.shapes.push(ShapeDesc {
             geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
                 positions: vec![

@@ -15,6 +15,7 @@
 //!
 //! Other MTL maps (`map_Ks`, `map_Bump`, `map_d`, ...) are ignored with a warning.
 
+use mcrender_core::material::{CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -164,9 +165,9 @@ impl Converter {
         }
         let (desc, light) = match mtl {
             None => (
-                MaterialDesc::Diffuse {
+                MaterialDesc::Diffuse(DiffuseMaterial {
                     reflectance: Rgb::splat(0.5).into(),
-                },
+                }),
                 None,
             ),
             Some(m) => self.convert(m, warnings)?,
@@ -222,13 +223,13 @@ impl Converter {
                 .filter(|n| *n > 0.0 && n.is_finite())
                 .unwrap_or(DEFAULT_IOR);
             return Ok((
-                MaterialDesc::Dielectric {
+                MaterialDesc::Dielectric(DielectricMaterial {
                     eta,
                     u_roughness: 0.0.into(),
                     v_roughness: 0.0.into(),
                     remap_roughness: false,
                     microfacet: Default::default(),
-                },
+                }),
                 light,
             ));
         }
@@ -241,12 +242,12 @@ impl Converter {
         };
         let kd_black = kd.constant().is_some_and(|c| c.max_component() <= 0.0);
         let Some(ks) = positive(rgb(m.specular)) else {
-            return Ok((MaterialDesc::Diffuse { reflectance: kd }, light));
+            return Ok((MaterialDesc::Diffuse(DiffuseMaterial { reflectance: kd }), light));
         };
         let ns = m.shininess.filter(|n| n.is_finite()).unwrap_or(0.0).max(0.0);
         let alpha = (2.0 / (ns + 2.0)).sqrt();
         let desc = if kd_black {
-            MaterialDesc::Conductor {
+            MaterialDesc::Conductor(ConductorMaterial {
                 eta: Rgb::WHITE.into(),
                 k: Rgb::BLACK.into(),
                 reflectance: Some(ks.map(|v| v.clamp(0.0, 1.0)).into()),
@@ -254,9 +255,9 @@ impl Converter {
                 v_roughness: alpha.into(),
                 remap_roughness: false,
                 microfacet: Default::default(),
-            }
+            })
         } else {
-            MaterialDesc::CoatedDiffuse {
+            MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
                 reflectance: kd,
                 u_roughness: alpha.into(),
                 v_roughness: alpha.into(),
@@ -267,7 +268,7 @@ impl Converter {
                 g: 0.0.into(),
                 max_depth: 10,
                 n_samples: 1,
-            }
+            })
         };
         Ok((desc, light))
     }

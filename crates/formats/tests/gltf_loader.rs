@@ -2,6 +2,7 @@
 //! triangle, a node hierarchy, a camera, lights, textured and emissive materials, GLB and
 //! data URIs) and malformed ones, whose errors must name the JSON path.
 
+use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial};
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
@@ -107,11 +108,11 @@ fn a_triangle_loads_with_normals_uvs_default_camera_and_light() {
     assert_eq!(m.uvs.as_ref().unwrap()[2].y, 0.0);
     assert_eq!(m.uvs.as_ref().unwrap()[0].y, 1.0);
     // The default material of glTF: white, metallic 1, roughness 1.
-    let MaterialDesc::MetallicRoughness {
+    let MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
         base_color,
         metallic,
         roughness,
-    } = &s.description.materials[0]
+    }) = &s.description.materials[0]
     else {
         panic!("{:?}", s.description.materials[0])
     };
@@ -295,11 +296,11 @@ fn textures_factors_emission_and_transmission_become_materials() {
     let s = load(&path).unwrap_or_else(|e| panic!("{e}"));
     let d = &s.description;
     assert_eq!(d.shapes.len(), 3);
-    let MaterialDesc::MetallicRoughness {
+    let MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
         base_color,
         metallic,
         roughness,
-    } = &d.materials[d.shapes[0].material as usize]
+    }) = &d.materials[d.shapes[0].material as usize]
     else {
         panic!()
     };
@@ -334,13 +335,13 @@ fn textures_factors_emission_and_transmission_become_materials() {
     // Transmission 1 with an index: a dielectric, alpha = roughness^2.
     assert_eq!(
         d.materials[d.shapes[2].material as usize],
-        MaterialDesc::Dielectric {
+        MaterialDesc::Dielectric(DielectricMaterial {
             eta: 1.33,
             u_roughness: 0.25.into(),
             v_roughness: 0.25.into(),
             remap_roughness: false,
             microfacet: Default::default(),
-        }
+        })
     );
     let w = s.warnings.join("\n");
     assert!(w.contains("EXT_made_up is not supported"), "{w}");

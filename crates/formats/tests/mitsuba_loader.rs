@@ -2,6 +2,9 @@
 //! `ref`), conventions (camera mirror, `max_depth`, transforms, envmap axes) and malformed
 //! input, which must give `file:line:col` and never panic.
 
+use mcrender_core::material::{
+    ConductorMaterial, DielectricMaterial, DiffuseMaterial, NormalMapMaterial, PlasticMaterial,
+};
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
@@ -108,7 +111,7 @@ fn include_path_ref_and_shapes() {
     let d = &l.description;
     assert_eq!(d.shapes.len(), 3);
     assert!(matches!(&d.materials[d.shapes[0].material as usize],
-        MaterialDesc::Diffuse { reflectance } if reflectance.constant() == Some(Rgb::new(0.8, 0.1, 0.1))));
+        MaterialDesc::Diffuse(DiffuseMaterial { reflectance }) if reflectance.constant() == Some(Rgb::new(0.8, 0.1, 0.1))));
     let GeometryDesc::TriangleMesh(m) = &d.shapes[0].geometry else {
         panic!()
     };
@@ -168,11 +171,11 @@ fn microfacet_plugins_default_to_beckmann_with_separable_masking() {
         "<bsdf type=\"roughconductor\"/>",
         "<bsdf type=\"roughdielectric\"><string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.3\"/></bsdf>",
     ]);
-    let MaterialDesc::Conductor {
+    let MaterialDesc::Conductor(ConductorMaterial {
         u_roughness,
         microfacet,
         ..
-    } = &m[0]
+    }) = &m[0]
     else {
         panic!("{m:?}")
     };
@@ -180,11 +183,11 @@ fn microfacet_plugins_default_to_beckmann_with_separable_masking() {
         (u_roughness.constant(), microfacet.model, microfacet.masking),
         (Some(0.1), MicrofacetModel::Beckmann, Masking::Separable)
     );
-    let MaterialDesc::Dielectric {
+    let MaterialDesc::Dielectric(DielectricMaterial {
         v_roughness,
         microfacet,
         ..
-    } = &m[1]
+    }) = &m[1]
     else {
         panic!("{m:?}")
     };
@@ -203,13 +206,13 @@ fn plastics_are_mitsubas_model_with_its_defaults() {
         "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.4\"/><string name=\"int_ior\" value=\"bk7\"/></bsdf>",
         "<bsdf type=\"roughplastic\"/>",
     ]);
-    let MaterialDesc::Plastic {
+    let MaterialDesc::Plastic(PlasticMaterial {
         diffuse_reflectance,
         specular_reflectance,
         nonlinear,
         specular_sampling_weight,
         coat,
-    } = &m[0]
+    }) = &m[0]
     else {
         panic!("{m:?}")
     };
@@ -219,25 +222,25 @@ fn plastics_are_mitsubas_model_with_its_defaults() {
     assert!((specular_sampling_weight - 1.0 / 1.5).abs() < 1e-6);
     // Polypropylene in air.
     assert!((coat.eta() - 1.49 / 1.000_277).abs() < 1e-6, "{}", coat.eta());
-    let MaterialDesc::Plastic {
+    let MaterialDesc::Plastic(PlasticMaterial {
         nonlinear,
         specular_sampling_weight,
         coat,
         ..
-    } = &m[1]
+    }) = &m[1]
     else {
         panic!()
     };
     assert!(*nonlinear && (coat.eta() - 1.9 / 1.000_277).abs() < 1e-6);
     let mean = (0.1 + 0.27 + 0.36) / 3.0;
     assert!((specular_sampling_weight - 1.0 / (1.0 + mean)).abs() < 1e-6);
-    let MaterialDesc::Plastic { coat, .. } = &m[2] else {
+    let MaterialDesc::Plastic(PlasticMaterial { coat, .. }) = &m[2] else {
         panic!()
     };
     let d = coat.distribution().unwrap();
     assert_eq!((d.model, d.alpha_x), (MicrofacetModel::TrowbridgeReitz, 0.4));
     assert!((coat.eta() - 1.5046 / 1.000_277).abs() < 1e-5);
-    let MaterialDesc::Plastic { coat, .. } = &m[3] else {
+    let MaterialDesc::Plastic(PlasticMaterial { coat, .. }) = &m[3] else {
         panic!()
     };
     let d = coat.distribution().unwrap();
@@ -371,7 +374,7 @@ fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
     let m = materials(&[
         "<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture><bsdf type=\"diffuse\"/></bsdf>",
     ]);
-    let MaterialDesc::NormalMap { normal_map, .. } = &m[0] else {
+    let MaterialDesc::NormalMap(NormalMapMaterial { normal_map, .. }) = &m[0] else {
         panic!("{m:?}")
     };
     assert_eq!(normal_map.constant(), Some(Rgb::new(0.5, 0.5, 1.0)));

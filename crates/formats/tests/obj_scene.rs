@@ -1,6 +1,7 @@
 //! An OBJ file with its MTL as a whole scene through the front door: materials mapped
 //! from MTL, emission as area lights, the default camera and light said in the warnings.
 
+use mcrender_core::material::{CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial};
 use std::path::Path;
 
 use mcrender_core::color::Rgb;
@@ -80,35 +81,35 @@ fn mtl_materials_map_to_diffuse_texture_conductor_coated_and_dielectric() {
     let m = |i: usize| &d.materials[d.shapes[i].material as usize];
     assert_eq!(
         *m(0),
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::new(0.2, 0.4, 0.6).into()
-        }
+        })
     );
-    let MaterialDesc::Diffuse {
+    let MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Texture::Bitmap(b),
-    } = m(1)
+    }) = m(1)
     else {
         panic!("{:?}", m(1))
     };
     assert_eq!((b.width, b.height, b.texels[0]), (2, 1, Rgb::new(1.0, 0.0, 0.0)));
     let alpha = |ns: f32| (2.0 / (ns + 2.0)).sqrt();
-    let MaterialDesc::Conductor {
+    let MaterialDesc::Conductor(ConductorMaterial {
         reflectance: Some(r),
         u_roughness,
         remap_roughness: false,
         ..
-    } = m(2)
+    }) = m(2)
     else {
         panic!("{:?}", m(2))
     };
     assert_eq!(r.constant(), Some(Rgb::new(0.9, 0.8, 0.7)));
     assert_eq!(u_roughness.constant(), Some(alpha(98.0)));
-    let MaterialDesc::CoatedDiffuse {
+    let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance,
         u_roughness,
         eta,
         ..
-    } = m(3)
+    }) = m(3)
     else {
         panic!("{:?}", m(3))
     };
@@ -116,7 +117,7 @@ fn mtl_materials_map_to_diffuse_texture_conductor_coated_and_dielectric() {
         (reflectance.constant(), u_roughness.constant(), *eta),
         (Some(Rgb::splat(0.5)), Some(alpha(18.0)), 1.5)
     );
-    let MaterialDesc::Dielectric { eta, .. } = m(4) else {
+    let MaterialDesc::Dielectric(DielectricMaterial { eta, .. }) = m(4) else {
         panic!("{:?}", m(4))
     };
     assert_eq!(*eta, 1.33);
@@ -157,9 +158,9 @@ fn a_file_without_mtl_is_grey_and_bad_files_are_errors() {
     let s = load_scene("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "");
     assert_eq!(
         s.description.materials,
-        vec![MaterialDesc::Diffuse {
+        vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::splat(0.5).into()
-        }]
+        })]
     );
     let dir = tempfile::tempdir().unwrap();
     let e = load(&dir.path().join("gone.obj")).expect_err("missing").to_string();

@@ -1,6 +1,7 @@
 //! One test per directive family: transforms, attribute scopes, orientation, materials,
 //! lights, options and `Include`, each against hand-computed values.
 
+use mcrender_core::material::DiffuseMaterial;
 use std::path::Path;
 
 use mcrender_core::color::Rgb;
@@ -203,9 +204,9 @@ fn object_instancing_defines_once_and_places_many_times() {
     assert_eq!(mesh(&o.shapes[1]).positions[0], Vec3::X);
     assert_eq!(
         d.materials[o.shapes[0].material as usize],
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::new(0.1, 0.2, 0.3).into()
-        }
+        })
     );
     assert_ne!(
         d.shapes[0].material, o.shapes[0].material,
@@ -257,9 +258,9 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     assert_eq!(sphere_matrix(&s, 0), Mat4::from_translation(Vec3::X));
     assert_eq!(
         d.materials[inner.material as usize],
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::new(0.1, 0.2, 0.3).into()
-        }
+        })
     );
     assert_eq!(
         inner.area_light,
@@ -274,9 +275,9 @@ fn attribute_scopes_restore_transform_material_light_and_orientation() {
     assert_eq!(sphere_matrix(&s, 1), Mat4::IDENTITY);
     assert_eq!(
         d.materials[outer.material as usize],
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::splat(0.5).into()
-        }
+        })
     );
     assert_eq!(outer.area_light, None);
     assert!(!outer.flip_normals);
@@ -343,9 +344,9 @@ fn named_materials_are_resolved_and_deduplicated() {
     assert_ne!(d.shapes[0].material, d.shapes[2].material);
     assert_eq!(
         d.materials[d.shapes[2].material as usize],
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::splat(0.5).into()
-        }
+        })
     );
 }
 

@@ -1,6 +1,7 @@
 //! The `coateddiffuse`, `coatedconductor`, `mix` and `interface` materials: parameters,
 //! defaults, named references and the messages for what is wrong.
 
+use mcrender_core::material::{CoatedConductorMaterial, CoatedDiffuseMaterial, MixMaterial};
 use std::path::Path;
 
 use mcrender_core::color::Rgb;
@@ -35,7 +36,7 @@ fn coateddiffuse_defaults_are_pbrts() {
     assert!(w.is_empty(), "{w:?}");
     assert_eq!(
         m,
-        MaterialDesc::CoatedDiffuse {
+        MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             reflectance: Rgb::splat(0.5).into(),
             u_roughness: 0.0.into(),
             v_roughness: 0.0.into(),
@@ -46,7 +47,7 @@ fn coateddiffuse_defaults_are_pbrts() {
             g: 0.0.into(),
             max_depth: 10,
             n_samples: 1,
-        }
+        })
     );
 }
 
@@ -60,7 +61,7 @@ fn coateddiffuse_reads_every_parameter() {
     assert!(w.is_empty(), "{w:?}");
     assert_eq!(
         m,
-        MaterialDesc::CoatedDiffuse {
+        MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             reflectance: Rgb::new(0.1, 0.2, 0.3).into(),
             u_roughness: 0.3.into(),
             v_roughness: 0.1.into(),
@@ -71,11 +72,11 @@ fn coateddiffuse_reads_every_parameter() {
             g: (-0.2).into(),
             max_depth: 20,
             n_samples: 4,
-        }
+        })
     );
     // A named glass for eta, as for dielectrics; unknown parameters are warned by name.
     let (m, w) = material("\"coateddiffuse\" \"spectrum eta\" \"glass-BK7\" \"float sigma\" 2");
-    let MaterialDesc::CoatedDiffuse { eta, .. } = m else {
+    let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial { eta, .. }) = m else {
         panic!("{m:?}")
     };
     assert!((eta - 1.5185).abs() < 1e-3, "{eta}");
@@ -87,7 +88,7 @@ fn coateddiffuse_reads_every_parameter() {
 fn coatedconductor_defaults_and_parameters() {
     let (m, w) = material("\"coatedconductor\"");
     assert!(w.is_empty(), "{w:?}");
-    let MaterialDesc::CoatedConductor {
+    let MaterialDesc::CoatedConductor(CoatedConductorMaterial {
         interface_eta,
         conductor_eta,
         conductor_k,
@@ -96,7 +97,7 @@ fn coatedconductor_defaults_and_parameters() {
         max_depth,
         n_samples,
         ..
-    } = m
+    }) = m
     else {
         panic!("{m:?}")
     };
@@ -119,7 +120,7 @@ fn coatedconductor_defaults_and_parameters() {
          \"float thickness\" 0.2 \"rgb albedo\" [0.5 0.5 0.5] \"float g\" 0.7 \"integer maxdepth\" 5 \"integer nsamples\" 2",
     );
     assert!(w.is_empty(), "{w:?}");
-    let MaterialDesc::CoatedConductor {
+    let MaterialDesc::CoatedConductor(CoatedConductorMaterial {
         interface_u_roughness,
         interface_v_roughness,
         interface_eta,
@@ -134,7 +135,7 @@ fn coatedconductor_defaults_and_parameters() {
         max_depth,
         n_samples,
         ..
-    } = m
+    }) = m
     else {
         panic!("{m:?}")
     };
@@ -172,7 +173,7 @@ fn coatedconductor_defaults_and_parameters() {
     );
 
     let (m, _) = material("\"coatedconductor\" \"rgb reflectance\" [0.9 0.5 0.1]");
-    let MaterialDesc::CoatedConductor { reflectance, .. } = m else {
+    let MaterialDesc::CoatedConductor(CoatedConductorMaterial { reflectance, .. }) = m else {
         panic!("{m:?}")
     };
     assert_eq!(reflectance, Some(Rgb::new(0.9, 0.5, 0.1).into()));
@@ -248,14 +249,12 @@ MakeNamedMaterial \"later\" \"string type\" \"interface\"
 "
     ));
     assert!(w.is_empty(), "{w:?}");
-    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize].clone() else {
+    let MaterialDesc::Mix(MixMaterial { materials, amount }) = d.materials[d.shapes[0].material as usize].clone()
+    else {
         panic!("{:?}", d.materials)
     };
     assert_eq!(amount.constant(), Some(0.25));
-    assert!(matches!(
-        d.materials[materials[0] as usize],
-        MaterialDesc::Diffuse { .. }
-    ));
+    assert!(matches!(d.materials[materials[0] as usize], MaterialDesc::Diffuse(_)));
     assert_eq!(d.materials[materials[1] as usize], MaterialDesc::Interface);
 
     // Inline mixes, nested mixes, default amount.
@@ -265,16 +264,17 @@ Material \"mix\" \"string materials\" [\"inner\" \"red\"] \"float amount\" 1
 Shape \"sphere\"
 "
     ));
-    let MaterialDesc::Mix { materials, amount } = d.materials[d.shapes[0].material as usize].clone() else {
+    let MaterialDesc::Mix(MixMaterial { materials, amount }) = d.materials[d.shapes[0].material as usize].clone()
+    else {
         panic!("{:?}", d.materials)
     };
     assert_eq!(amount.constant(), Some(1.0));
     assert_eq!(
         d.materials[materials[0] as usize],
-        MaterialDesc::Mix {
+        MaterialDesc::Mix(MixMaterial {
             materials: [materials[1], materials[0] - 1],
             amount: 0.5.into()
-        }
+        })
     );
 }
 
@@ -339,7 +339,7 @@ fn coated_and_mix_parameters_take_textures() {
         "\"coateddiffuse\" \"texture reflectance\" \"s\" \"texture uroughness\" \"f\" \"texture vroughness\" \"f\" \
          \"texture thickness\" \"f\" \"texture albedo\" \"s\" \"texture g\" \"f\"",
     );
-    let MaterialDesc::CoatedDiffuse {
+    let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance,
         u_roughness,
         v_roughness,
@@ -347,7 +347,7 @@ fn coated_and_mix_parameters_take_textures() {
         albedo,
         g,
         ..
-    } = m
+    }) = m
     else {
         panic!("{m:?}")
     };
@@ -357,11 +357,11 @@ fn coated_and_mix_parameters_take_textures() {
     }
     // A single roughness texture serves both directions.
     let m = textured_material("\"coateddiffuse\" \"texture roughness\" \"f\"");
-    let MaterialDesc::CoatedDiffuse {
+    let MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         u_roughness,
         v_roughness,
         ..
-    } = m
+    }) = m
     else {
         panic!("{m:?}")
     };
@@ -372,7 +372,7 @@ fn coated_and_mix_parameters_take_textures() {
          \"texture conductor.k\" \"s\" \"texture conductor.uroughness\" \"f\" \"texture conductor.vroughness\" \"f\" \
          \"texture thickness\" \"f\" \"texture albedo\" \"s\" \"texture g\" \"f\"",
     );
-    let MaterialDesc::CoatedConductor {
+    let MaterialDesc::CoatedConductor(CoatedConductorMaterial {
         interface_u_roughness,
         interface_v_roughness,
         conductor_eta,
@@ -383,7 +383,7 @@ fn coated_and_mix_parameters_take_textures() {
         albedo,
         g,
         ..
-    } = m
+    }) = m
     else {
         panic!("{m:?}")
     };
@@ -401,7 +401,7 @@ fn coated_and_mix_parameters_take_textures() {
         assert!(t.constant().is_none(), "{t:?}");
     }
     let m = textured_material("\"coatedconductor\" \"texture reflectance\" \"s\"");
-    let MaterialDesc::CoatedConductor { reflectance, .. } = m else {
+    let MaterialDesc::CoatedConductor(CoatedConductorMaterial { reflectance, .. }) = m else {
         panic!("{m:?}")
     };
     assert!(reflectance.is_some_and(|r| r.constant().is_none()));
@@ -411,7 +411,7 @@ fn coated_and_mix_parameters_take_textures() {
         &MIX["WorldBegin\n".len()..]
     ));
     assert!(w.is_empty(), "{w:?}");
-    let MaterialDesc::Mix { amount, .. } = &d.materials[d.shapes[0].material as usize] else {
+    let MaterialDesc::Mix(MixMaterial { amount, .. }) = &d.materials[d.shapes[0].material as usize] else {
         panic!("{:?}", d.materials)
     };
     assert!(amount.constant().is_none(), "{amount:?}");

@@ -1,6 +1,9 @@
 //! The `conductor`, `dielectric`, `thindielectric` and `diffusetransmission` materials:
 //! parameters, defaults, named spectra and the messages for what is wrong or unsupported.
 
+use mcrender_core::material::{
+    ConductorMaterial, DielectricMaterial, DiffuseMaterial, DiffuseTransmissionMaterial, ThinDielectricMaterial,
+};
 use std::path::Path;
 
 use mcrender_core::color::Rgb;
@@ -25,7 +28,7 @@ fn error(decl: &str) -> (SceneErrorKind, String) {
 
 fn conductor_parts(m: &MaterialDesc) -> (Rgb, Rgb, Option<Rgb>, f32, f32, bool) {
     match m {
-        MaterialDesc::Conductor {
+        MaterialDesc::Conductor(ConductorMaterial {
             eta,
             k,
             reflectance,
@@ -33,7 +36,7 @@ fn conductor_parts(m: &MaterialDesc) -> (Rgb, Rgb, Option<Rgb>, f32, f32, bool) 
             v_roughness,
             remap_roughness,
             ..
-        } => (
+        }) => (
             eta.constant().unwrap(),
             k.constant().unwrap(),
             reflectance.as_ref().map(|r| r.constant().unwrap()),
@@ -149,14 +152,17 @@ fn sampled_spectra_become_rgb() {
         conductor_parts(&material("\"conductor\" \"spectrum eta\" [400 1.2 700 1.2] \"spectrum k\" [400 3 700 1]").0);
     assert!((0..3).all(|c| (eta[c] - 1.2).abs() < 1e-5), "{eta:?}");
     assert!(k.b > k.g && k.g > k.r, "{k:?}");
-    let MaterialDesc::Diffuse { reflectance } = material("\"diffuse\" \"spectrum reflectance\" [300 0.5 800 0.5]").0
+    let MaterialDesc::Diffuse(DiffuseMaterial { reflectance }) =
+        material("\"diffuse\" \"spectrum reflectance\" [300 0.5 800 0.5]").0
     else {
         panic!()
     };
     let reflectance = reflectance.constant().unwrap();
     assert!((0..3).all(|c| (reflectance[c] - 0.5).abs() < 1e-5), "{reflectance:?}");
     // A dielectric takes the index at 550 nm, as for the named glasses.
-    let MaterialDesc::Dielectric { eta, .. } = material("\"dielectric\" \"spectrum eta\" [500 1.6 600 1.4]").0 else {
+    let MaterialDesc::Dielectric(DielectricMaterial { eta, .. }) =
+        material("\"dielectric\" \"spectrum eta\" [500 1.6 600 1.4]").0
+    else {
         panic!()
     };
     assert!((eta - 1.5).abs() < 1e-5, "{eta}");
@@ -170,7 +176,8 @@ fn sampled_spectra_become_rgb() {
 #[test]
 fn dielectric_eta_as_float_named_glass_or_default() {
     let eta = |decl: &str| match material(decl).0 {
-        MaterialDesc::Dielectric { eta, .. } | MaterialDesc::ThinDielectric { eta } => eta,
+        MaterialDesc::Dielectric(DielectricMaterial { eta, .. })
+        | MaterialDesc::ThinDielectric(ThinDielectricMaterial { eta }) => eta,
         m => panic!("{m:?}"),
     };
     assert_eq!(eta("\"dielectric\""), 1.5);
@@ -197,13 +204,13 @@ fn dielectric_roughness() {
     let (m, warnings) = material("\"dielectric\" \"float eta\" 1.5 \"float uroughness\" 0.1 \"float vroughness\" 0.4");
     assert_eq!(
         m,
-        MaterialDesc::Dielectric {
+        MaterialDesc::Dielectric(DielectricMaterial {
             eta: 1.5,
             u_roughness: 0.1.into(),
             v_roughness: 0.4.into(),
             remap_roughness: true,
             microfacet: Default::default(),
-        }
+        })
     );
     assert!(warnings.is_empty());
     // pbrt's other parameters are read or warned about, never dropped silently.
@@ -218,19 +225,19 @@ fn dielectric_roughness() {
 fn diffuse_transmission_parameters() {
     assert_eq!(
         material("\"diffusetransmission\"").0,
-        MaterialDesc::DiffuseTransmission {
+        MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
             reflectance: Rgb::splat(0.25).into(),
             transmittance: Rgb::splat(0.25).into(),
             scale: 1.0
-        }
+        })
     );
     assert_eq!(
         material("\"diffusetransmission\" \"rgb reflectance\" [0.1 0.2 0.3] \"rgb transmittance\" [0.4 0.5 0.6] \"float scale\" 1.5").0,
-        MaterialDesc::DiffuseTransmission {
+        MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
             reflectance: Rgb::new(0.1, 0.2, 0.3).into(),
             transmittance: Rgb::new(0.4, 0.5, 0.6).into(),
             scale: 1.5
-        }
+        })
     );
     assert_eq!(
         error("\"diffusetransmission\" \"rgb transmittance\" [0.4 1.5 0.6]").1,

@@ -2,6 +2,7 @@
 //! `MCRENDER_SCENES` names the directory holding `cornell-box/`, `coffee/`, `veach-mis/`)
 //! the shared test scenes.
 
+use mcrender_core::material::{CoatedDiffuseMaterial, ConductorMaterial, DiffuseMaterial};
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
@@ -62,9 +63,9 @@ fn check_cornell(loaded: &LoadedScene) {
     assert!(!light.two_sided);
     assert_eq!(
         d.materials[light_shape.material as usize],
-        MaterialDesc::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::BLACK.into()
-        }
+        })
     );
     let GeometryDesc::TriangleMesh(mesh) = &light_shape.geometry else {
         unreachable!()
@@ -79,9 +80,9 @@ fn check_cornell(loaded: &LoadedScene) {
 
     // Left wall, right wall, the shared grey, and the light's black.
     assert_eq!(d.materials.len(), 4);
-    assert!(d.materials.contains(&MaterialDesc::Diffuse {
+    assert!(d.materials.contains(&MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::new(0.63, 0.065, 0.05).into()
-    }));
+    })));
     let total_triangles: usize = d
         .shapes
         .iter()
@@ -141,7 +142,7 @@ fn coffee_loads_with_its_coated_plastics() {
     let loaded = load_file(&dir.join("coffee/scene-v4.pbrt")).unwrap();
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     let m = &loaded.description.materials;
-    let orange = MaterialDesc::CoatedDiffuse {
+    let orange = MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance: Rgb::new(1.0, 0.378676, 0.013473).into(),
         u_roughness: 0.001.into(),
         v_roughness: 0.001.into(),
@@ -152,15 +153,12 @@ fn coffee_loads_with_its_coated_plastics() {
         g: 0.0.into(),
         max_depth: 10,
         n_samples: 1,
-    };
+    });
     assert!(m.contains(&orange), "{m:?}");
-    let coated = m
-        .iter()
-        .filter(|d| matches!(d, MaterialDesc::CoatedDiffuse { .. }))
-        .count();
+    let coated = m.iter().filter(|d| matches!(d, MaterialDesc::CoatedDiffuse(_))).count();
     assert_eq!(coated, 3, "orange and black plastic, floor: {m:?}");
-    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Conductor { .. })));
-    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Dielectric { .. })));
+    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Conductor(_))));
+    assert!(m.iter().any(|d| matches!(d, MaterialDesc::Dielectric(_))));
 }
 
 #[test]
@@ -174,7 +172,7 @@ fn veach_mis_loads_with_its_conductor_plates() {
         .materials
         .iter()
         .filter_map(|m| match m.clone() {
-            MaterialDesc::Conductor {
+            MaterialDesc::Conductor(ConductorMaterial {
                 eta,
                 k,
                 reflectance: None,
@@ -182,7 +180,7 @@ fn veach_mis_loads_with_its_conductor_plates() {
                 v_roughness,
                 remap_roughness: false,
                 ..
-            } => {
+            }) => {
                 assert_eq!(eta, Rgb::new(0.200438, 0.924033, 1.102212).into());
                 assert_eq!(k, Rgb::new(3.912949, 2.452848, 2.142188).into());
                 assert_eq!(u_roughness, v_roughness);

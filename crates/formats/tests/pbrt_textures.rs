@@ -1,6 +1,7 @@
 //! `Texture` and `"texture ..."` parameters: each class, the texture graph they build, the
 //! errors, image decoding, and a render whose mean radiance is the texture's mean.
 
+use mcrender_core::material::{ConductorMaterial, DiffuseMaterial};
 use std::path::Path;
 
 use mcrender_core::color::{srgb_to_linear, Rgb};
@@ -20,7 +21,7 @@ fn reflectance(body: &str, dir: &Path) -> RgbTexture {
     let s = load(body, dir).unwrap_or_else(|e| panic!("{e}"));
     let d = s.description;
     match &d.materials[d.shapes[0].material as usize] {
-        MaterialDesc::Diffuse { reflectance } => reflectance.clone(),
+        MaterialDesc::Diffuse(DiffuseMaterial { reflectance }) => reflectance.clone(),
         m => panic!("{m:?}"),
     }
 }
@@ -139,11 +140,11 @@ fn imagemap_reads_decodes_and_shares_images() {
     .unwrap_or_else(|e| panic!("{e}"));
     assert!(s.warnings.iter().all(|w| !w.contains("Texture")), "{:?}", s.warnings);
     let d = s.description;
-    let MaterialDesc::Conductor {
+    let MaterialDesc::Conductor(ConductorMaterial {
         reflectance: Some(Texture::Image(a)),
         u_roughness: Texture::Image(f),
         ..
-    } = &d.materials[d.shapes[0].material as usize]
+    }) = &d.materials[d.shapes[0].material as usize]
     else {
         panic!("{:?}", d.materials)
     };

@@ -4,10 +4,9 @@
 
 use std::sync::Arc;
 
-use super::MaterialId;
 use super::{
-    EnvMapping, FloatTexture, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, RgbTexture,
-    Scene, SceneDescription, ShapeDesc,
+    EnvMapping, GeometryDesc, Instance, LightDesc, MaterialDesc, ObjectGeometry, Primitive, Scene, SceneDescription,
+    ShapeDesc,
 };
 use crate::accel::WideBvh;
 use crate::camera::{Camera, PerspectiveCamera};
@@ -16,7 +15,7 @@ use crate::light::{
     DiffuseAreaLight, DistantLight, ImageInfiniteLight, Light, PointLight, PowerLightSampler, SpotLight,
     UniformInfiniteLight,
 };
-use crate::material::Material;
+use crate::material::{check_finite, check_non_negative, InvalidParameter, Material};
 use crate::math::{Vec2, Vec3};
 use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 use crate::texture::effective_alpha;
@@ -52,18 +51,12 @@ fn invalid(what: impl Into<String>, detail: impl Into<String>) -> BuildError {
     }
 }
 
-fn check_finite(what: &str, vals: &[f32]) -> Result<(), BuildError> {
-    match vals.iter().find(|v| !v.is_finite()) {
-        Some(v) => Err(invalid(what, format!("expected finite numbers, found {v}"))),
-        None => Ok(()),
-    }
-}
-
-fn check_non_negative(what: &str, vals: &[f32]) -> Result<(), BuildError> {
-    check_finite(what, vals)?;
-    match vals.iter().find(|v| **v < 0.0) {
-        Some(v) => Err(invalid(what, format!("expected non-negative values, found {v}"))),
-        None => Ok(()),
+impl From<InvalidParameter> for BuildError {
+    fn from(e: InvalidParameter) -> Self {
+        Self::Invalid {
+            what: e.what,
+            detail: e.detail,
+        }
     }
 }
 
@@ -124,152 +117,7 @@ impl SceneDescription {
             }
         }
         for (i, m) in self.materials.iter().enumerate() {
-            match m {
-                MaterialDesc::Diffuse { reflectance } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
-                }
-                MaterialDesc::Conductor {
-                    eta,
-                    k,
-                    reflectance,
-                    u_roughness,
-                    v_roughness,
-                    ..
-                } => {
-                    check_non_negative(&format!("eta of material {i}"), &rgb_constant(eta))?;
-                    check_non_negative(&format!("k of material {i}"), &rgb_constant(k))?;
-                    if let Some(r) = reflectance {
-                        check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(r))?;
-                    }
-                    check_non_negative(
-                        &format!("roughness of material {i}"),
-                        &float_constants(&[u_roughness, v_roughness]),
-                    )?;
-                }
-                MaterialDesc::Dielectric {
-                    eta,
-                    u_roughness,
-                    v_roughness,
-                    ..
-                } => {
-                    check_positive_eta(i, *eta)?;
-                    check_non_negative(
-                        &format!("roughness of material {i}"),
-                        &float_constants(&[u_roughness, v_roughness]),
-                    )?;
-                }
-                MaterialDesc::ThinDielectric { eta } => check_positive_eta(i, *eta)?,
-                MaterialDesc::DiffuseTransmission {
-                    reflectance,
-                    transmittance,
-                    scale,
-                } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
-                    check_non_negative(&format!("transmittance of material {i}"), &rgb_constant(transmittance))?;
-                    check_non_negative(&format!("scale of material {i}"), &[*scale])?;
-                }
-                MaterialDesc::CoatedDiffuse {
-                    reflectance,
-                    u_roughness,
-                    v_roughness,
-                    thickness,
-                    eta,
-                    albedo,
-                    g,
-                    ..
-                } => {
-                    check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(reflectance))?;
-                    check_non_negative(
-                        &format!("roughness of material {i}"),
-                        &float_constants(&[u_roughness, v_roughness]),
-                    )?;
-                    check_positive_eta(i, *eta)?;
-                    check_slab(i, thickness, albedo, g)?;
-                }
-                MaterialDesc::CoatedConductor {
-                    interface_u_roughness,
-                    interface_v_roughness,
-                    interface_eta,
-                    conductor_eta,
-                    conductor_k,
-                    reflectance,
-                    conductor_u_roughness,
-                    conductor_v_roughness,
-                    thickness,
-                    albedo,
-                    g,
-                    ..
-                } => {
-                    check_non_negative(
-                        &format!("roughness of material {i}"),
-                        &float_constants(&[
-                            interface_u_roughness,
-                            interface_v_roughness,
-                            conductor_u_roughness,
-                            conductor_v_roughness,
-                        ]),
-                    )?;
-                    check_positive_eta(i, *interface_eta)?;
-                    check_non_negative(&format!("conductor eta of material {i}"), &rgb_constant(conductor_eta))?;
-                    check_non_negative(&format!("conductor k of material {i}"), &rgb_constant(conductor_k))?;
-                    if let Some(r) = reflectance {
-                        check_non_negative(&format!("reflectance of material {i}"), &rgb_constant(r))?;
-                    }
-                    check_slab(i, thickness, albedo, g)?;
-                }
-                MaterialDesc::Mix { materials, amount } => {
-                    check_finite(&format!("amount of material {i}"), &float_constants(&[amount]))?;
-                    if let Some(m) = materials.iter().find(|m| **m as usize >= self.materials.len()) {
-                        return Err(invalid(
-                            format!("material {i}"),
-                            format!("mixes material index {m}, out of range"),
-                        ));
-                    }
-                }
-                MaterialDesc::MetallicRoughness {
-                    base_color,
-                    metallic,
-                    roughness,
-                } => {
-                    check_non_negative(&format!("base colour of material {i}"), &rgb_constant(base_color))?;
-                    check_non_negative(
-                        &format!("metallic and roughness of material {i}"),
-                        &float_constants(&[metallic, roughness]),
-                    )?;
-                }
-                MaterialDesc::Plastic {
-                    diffuse_reflectance,
-                    specular_reflectance,
-                    specular_sampling_weight,
-                    coat,
-                    ..
-                } => {
-                    check_non_negative(
-                        &format!("diffuse reflectance of material {i}"),
-                        &rgb_constant(diffuse_reflectance),
-                    )?;
-                    check_non_negative(
-                        &format!("specular reflectance of material {i}"),
-                        &rgb_constant(specular_reflectance),
-                    )?;
-                    check_positive_eta(i, coat.eta())?;
-                    if !(0.0..=1.0).contains(specular_sampling_weight) {
-                        return Err(invalid(
-                            format!("specular sampling weight of material {i}"),
-                            format!("expected in [0, 1], found {specular_sampling_weight}"),
-                        ));
-                    }
-                }
-                MaterialDesc::NormalMap { material, .. } => {
-                    if *material as usize >= self.materials.len() {
-                        return Err(invalid(
-                            format!("material {i}"),
-                            format!("normal-maps material index {material}, out of range"),
-                        ));
-                    }
-                }
-                MaterialDesc::Interface => {}
-            }
+            m.validate(i, self.materials.len())?;
         }
         check_mix_cycles(&self.materials)?;
         validate_shapes(&self.shapes, self.materials.len())?;
@@ -569,44 +417,6 @@ fn validate_light(i: usize, l: &LightDesc) -> Result<(), BuildError> {
     Ok(())
 }
 
-/// The channels of a constant texture (nothing for other textures, whose values are
-/// checked where they are built: images are decoded from files, the rest combine those).
-fn rgb_constant(t: &RgbTexture) -> Vec<f32> {
-    t.constant().map(|c| c.to_array().to_vec()).unwrap_or_default()
-}
-
-/// The values of the constant textures among `ts`.
-fn float_constants(ts: &[&FloatTexture]) -> Vec<f32> {
-    ts.iter().filter_map(|t| t.constant()).collect()
-}
-
-fn check_positive_eta(material: usize, eta: f32) -> Result<(), BuildError> {
-    if eta > 0.0 && eta.is_finite() {
-        Ok(())
-    } else {
-        Err(invalid(
-            format!("index of refraction of material {material}"),
-            format!("expected a finite value > 0, found {eta}"),
-        ))
-    }
-}
-
-/// The slab of a layered material: thickness and albedo finite and non-negative, `g`
-/// finite (clamped as pbrt does when the material is built).
-fn check_slab(
-    material: usize,
-    thickness: &FloatTexture,
-    albedo: &RgbTexture,
-    g: &FloatTexture,
-) -> Result<(), BuildError> {
-    check_non_negative(
-        &format!("thickness of material {material}"),
-        &float_constants(&[thickness]),
-    )?;
-    check_non_negative(&format!("albedo of material {material}"), &rgb_constant(albedo))?;
-    check_finite(&format!("g of material {material}"), &float_constants(&[g]))
-}
-
 /// Error when a `Mix` material contains itself, directly or through other mixes (a
 /// depth-first search over the mix graph).
 fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
@@ -620,11 +430,7 @@ fn check_mix_cycles(materials: &[MaterialDesc]) -> Result<(), BuildError> {
         let mut stack = vec![(root, 0usize)];
         state[root] = 1;
         while let Some(&mut (m, ref mut next)) = stack.last_mut() {
-            let children: &[MaterialId] = match &materials[m] {
-                MaterialDesc::Mix { materials, .. } => materials,
-                MaterialDesc::NormalMap { material, .. } => std::slice::from_ref(material),
-                _ => &[],
-            };
+            let children = materials[m].children();
             if let Some(&c) = children.get(*next) {
                 *next += 1;
                 let c = c as usize;
@@ -675,7 +481,7 @@ impl Scene {
         desc.validate()?;
         let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
         let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
-        let has_normal_maps = materials.iter().any(|m| matches!(m, Material::NormalMap { .. }));
+        let has_normal_maps = materials.iter().any(|m| matches!(m, Material::NormalMap(_)));
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         // Which description shape each primitive comes from (for messages).

@@ -3,17 +3,18 @@
 //! Everything here is already resolved: transforms are matrices, named materials are indices,
 //! meshes are in world space. No strings, files or parsing state reach the core.
 
-use crate::bsdf::{MicrofacetStyle, PlasticCoat};
 pub use crate::camera::CameraDesc;
 use crate::color::Rgb;
 pub use crate::film::{FilmDesc, FilterDesc};
 pub use crate::light::EnvMapping;
+pub use crate::material::{
+    CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial,
+    DiffuseTransmissionMaterial, MaterialDesc, MaterialId, MetallicRoughnessMaterial, MixMaterial, NormalMapMaterial,
+    PlasticMaterial, ThinDielectricMaterial,
+};
 use crate::math::{Transform, Vec2, Vec3};
 pub use crate::sampling::{SamplerDesc, SamplerKind};
 pub use crate::texture::{FloatTexture, RgbTexture};
-
-/// Index into [`SceneDescription::materials`].
-pub type MaterialId = u32;
 
 /// A whole scene: what to render and how.
 #[derive(Clone, Debug)]
@@ -271,173 +272,6 @@ impl Default for IntegratorDesc {
             mlt: MltDesc::default(),
         }
     }
-}
-
-/// A material. Texturable parameters (as in pbrt-v4) are [`RgbTexture`]s or
-/// [`FloatTexture`]s; constants convert with `.into()` (`Rgb::splat(0.5).into()`).
-#[derive(Clone, Debug, PartialEq)]
-pub enum MaterialDesc {
-    /// Lambertian reflection (pbrt `diffuse`), reflecting on both sides.
-    Diffuse {
-        /// Albedo, clamped to [0, 1] where evaluated.
-        reflectance: RgbTexture,
-    },
-    /// A metal (pbrt `conductor`): a mirror, or a Trowbridge-Reitz microfacet surface when
-    /// rough, with Fresnel from a complex index of refraction per channel.
-    Conductor {
-        /// Real part of the index of refraction (relative to the outside), per channel.
-        eta: RgbTexture,
-        /// Imaginary part (absorption), per channel.
-        k: RgbTexture,
-        /// When given, replaces `eta` and `k` as pbrt does: `eta = 1`,
-        /// `k = 2 sqrt(r) / sqrt(1 - r)`, the index whose normal-incidence reflectance is
-        /// `r` (clamped to [0, 0.9999]).
-        reflectance: Option<RgbTexture>,
-        /// Roughness along the shading tangent (`dpdu`).
-        u_roughness: FloatTexture,
-        /// Roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// Map roughness to microfacet alpha by `sqrt` (pbrt's `remaproughness`, default
-        /// true); otherwise the roughness is alpha itself.
-        remap_roughness: bool,
-        /// Microfacet distribution and masking term (default pbrt-v4's).
-        microfacet: MicrofacetStyle,
-    },
-    /// Glass, water (pbrt `dielectric`): reflection and refraction, smooth or rough.
-    Dielectric {
-        /// Index of refraction of the inside (the side opposite the surface normal) over
-        /// the outside; 1 passes light straight through.
-        eta: f32,
-        /// Roughness along the shading tangent.
-        u_roughness: FloatTexture,
-        /// Roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// As for [`MaterialDesc::Conductor`].
-        remap_roughness: bool,
-        /// As for [`MaterialDesc::Conductor`].
-        microfacet: MicrofacetStyle,
-    },
-    /// A thin slab such as a window pane (pbrt `thindielectric`): specular reflection and
-    /// straight transmission, interreflections inside summed.
-    ThinDielectric {
-        /// Index of refraction of the slab.
-        eta: f32,
-    },
-    /// Lambertian reflection and transmission (pbrt `diffusetransmission`).
-    DiffuseTransmission {
-        /// Reflectance (clamped to [0, 1] after scaling).
-        reflectance: RgbTexture,
-        /// Transmittance (clamped to [0, 1] after scaling).
-        transmittance: RgbTexture,
-        /// Factor applied to both.
-        scale: f32,
-    },
-    /// A dielectric coat over a Lambertian base with a scattering slab between them (pbrt
-    /// `coateddiffuse`), evaluated stochastically.
-    CoatedDiffuse {
-        /// Albedo of the base, in [0, 1] (clamped per hit).
-        reflectance: RgbTexture,
-        /// Coat roughness along the shading tangent.
-        u_roughness: FloatTexture,
-        /// Coat roughness along the bitangent.
-        v_roughness: FloatTexture,
-        /// As for [`MaterialDesc::Conductor`].
-        remap_roughness: bool,
-        /// Slab thickness in mean free paths (pbrt default 0.01).
-        thickness: FloatTexture,
-        /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
-        eta: f32,
-        /// Single-scattering albedo of the slab (pbrt default 0: absorbing only).
-        albedo: RgbTexture,
-        /// Henyey-Greenstein asymmetry of the slab, in (-1, 1) (pbrt default 0).
-        g: FloatTexture,
-        /// Maximum scattering events of a random walk (pbrt default 10).
-        max_depth: u32,
-        /// Random walks per evaluation (pbrt default 1).
-        n_samples: u32,
-    },
-    /// A dielectric coat over a conductor with a scattering slab between them (pbrt
-    /// `coatedconductor`), evaluated stochastically.
-    CoatedConductor {
-        /// Coat roughness along the shading tangent.
-        interface_u_roughness: FloatTexture,
-        /// Coat roughness along the bitangent.
-        interface_v_roughness: FloatTexture,
-        /// Index of refraction of the coat (pbrt default 1.5); 0 means 1.
-        interface_eta: f32,
-        /// Real part of the conductor's index of refraction, relative to vacuum as pbrt
-        /// gives it (divided by the coat's index when the material is built).
-        conductor_eta: RgbTexture,
-        /// Imaginary part, relative to vacuum (divided likewise).
-        conductor_k: RgbTexture,
-        /// When given, replaces `conductor_eta` and `conductor_k` as for
-        /// [`MaterialDesc::Conductor`] (relative to the coat).
-        reflectance: Option<RgbTexture>,
-        /// Conductor roughness along the shading tangent.
-        conductor_u_roughness: FloatTexture,
-        /// Conductor roughness along the bitangent.
-        conductor_v_roughness: FloatTexture,
-        /// Remap both roughnesses as for [`MaterialDesc::Conductor`].
-        remap_roughness: bool,
-        /// Slab thickness in mean free paths (pbrt default 0.01).
-        thickness: FloatTexture,
-        /// Single-scattering albedo of the slab (pbrt default 0).
-        albedo: RgbTexture,
-        /// Henyey-Greenstein asymmetry of the slab (pbrt default 0).
-        g: FloatTexture,
-        /// Maximum scattering events of a random walk (pbrt default 10).
-        max_depth: u32,
-        /// Random walks per evaluation (pbrt default 1).
-        n_samples: u32,
-    },
-    /// Mitsuba 3's `plastic` and `roughplastic` (see `bsdf::PlasticBxdf`): a dielectric
-    /// coat over a diffuse base with the internal scattering summed in closed form.
-    Plastic {
-        /// Albedo of the base, in [0, 1] (clamped per hit).
-        diffuse_reflectance: RgbTexture,
-        /// Tint of the coat's reflection (Mitsuba default 1).
-        specular_reflectance: RgbTexture,
-        /// Account for the colour shift of internal scattering (Mitsuba's `nonlinear`).
-        nonlinear: bool,
-        /// Mitsuba's specular sampling weight, `mean(specular) / (mean(diffuse) +
-        /// mean(specular))` over the textures, in [0, 1].
-        specular_sampling_weight: f32,
-        /// The coat: index of refraction and roughness, with its precomputed tables.
-        coat: PlasticCoat,
-    },
-    /// Another material with its shading normal replaced by a normal map (Mitsuba 3's
-    /// `normalmap`): the map's RGB `c` gives the normal `normalize(2 c - 1)` in the shading
-    /// frame of the surface (x along the tangent, z the shading normal), and the old tangent
-    /// projected on the new tangent plane is the new tangent. Applied where rays hit the
-    /// surface (`Scene::intersect`), so integrators see the perturbed normal (their cosine
-    /// is taken with it, as Mitsuba's BSDFs take theirs in the perturbed frame).
-    NormalMap {
-        /// The material shaded with the new frame (no cycles through normal maps).
-        material: MaterialId,
-        /// Linear RGB in [0, 1] per texel (a `raw` texture).
-        normal_map: RgbTexture,
-    },
-    /// One of two materials per shading point (pbrt `mix`): the second with probability
-    /// `amount`, chosen by a hash of the point and `wo`, so deterministically.
-    Mix {
-        /// The two materials (indices into [`SceneDescription::materials`]; no cycles).
-        materials: [MaterialId; 2],
-        /// Probability of the second, clamped to [0, 1] (pbrt default 0.5).
-        amount: FloatTexture,
-    },
-    /// glTF 2.0's metallic-roughness material (the BRDF of the glTF specification's
-    /// Appendix B, see `bsdf::MetallicRoughnessBxdf`).
-    MetallicRoughness {
-        /// Base colour, in [0, 1] (clamped per hit).
-        base_color: RgbTexture,
-        /// Metalness, in [0, 1] (clamped per hit).
-        metallic: FloatTexture,
-        /// Perceptual roughness in [0, 1]; the GGX alpha is its square.
-        roughness: FloatTexture,
-    },
-    /// No surface at all (pbrt `interface`, which marks medium boundaries): rays pass
-    /// straight through, shadow rays included.
-    Interface,
 }
 
 /// The emission of an area light attached to a shape (pbrt `AreaLightSource "diffuse"`).

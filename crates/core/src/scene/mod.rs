@@ -198,9 +198,9 @@ impl Scene {
         let mut m = &self.materials[material as usize];
         loop {
             let next = match m {
-                Material::Mix { .. } => m.mix_choice(si, &self.texture_context(m, si)),
+                Material::Mix(_) => m.mix_choice(si, &self.texture_context(m, si)),
                 // (The frame was moved by `intersect`.)
-                Material::NormalMap { material, .. } => Some(*material),
+                Material::NormalMap(n) => Some(n.material),
                 _ => None,
             };
             let Some(next) = next else { break };

@@ -3,6 +3,7 @@
 #![allow(dead_code, missing_docs)]
 
 use mcrender_core::color::Rgb;
+use mcrender_core::material::DiffuseMaterial;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::*;
@@ -20,9 +21,9 @@ pub fn empty_scene() -> SceneDescription {
             ..Default::default()
         },
         integrator: IntegratorDesc::default(),
-        materials: vec![MaterialDesc::Diffuse {
+        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::BLACK.into(),
-        }],
+        })],
         shapes: vec![],
         lights: vec![],
         objects: vec![],
@@ -39,9 +40,9 @@ pub fn inside_sphere_scene(
     inward: bool,
 ) -> SceneDescription {
     let mut d = empty_scene();
-    d.materials.push(MaterialDesc::Diffuse {
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: albedo.into(),
-    });
+    }));
     d.camera.fov_degrees = 60.0;
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::full_sphere(radius, Transform::IDENTITY),
@@ -55,9 +56,9 @@ pub fn inside_sphere_scene(
 
 /// A 0.2 x 0.2 diffuse square at the origin facing +y.
 pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
-    d.materials.push(MaterialDesc::Diffuse {
+    d.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: Rgb::splat(albedo).into(),
-    });
+    }));
     let s = 0.1;
     d.shapes.push(ShapeDesc {
         geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {

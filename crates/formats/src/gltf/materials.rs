@@ -9,6 +9,7 @@
 //! coordinate set, alpha blending and masking. Each image is sized from its header and
 //! counted against the load's memory limit before it is decoded.
 
+use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
@@ -181,23 +182,23 @@ impl<'a> Materials<'a> {
                 let alpha = pbr.roughness_factor().clamp(0.0, 1.0).powi(2);
                 let eta = m.ior().filter(|n| *n >= 1.0 && n.is_finite()).unwrap_or(1.5);
                 return Ok((
-                    MaterialDesc::Dielectric {
+                    MaterialDesc::Dielectric(DielectricMaterial {
                         eta,
                         u_roughness: alpha.into(),
                         v_roughness: alpha.into(),
                         remap_roughness: false,
                         microfacet: Default::default(),
-                    },
+                    }),
                     area_light,
                 ));
             }
         }
         Ok((
-            MaterialDesc::MetallicRoughness {
+            MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
                 base_color,
                 metallic,
                 roughness,
-            },
+            }),
             area_light,
         ))
     }

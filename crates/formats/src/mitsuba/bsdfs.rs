@@ -30,6 +30,9 @@
 
 use mcrender_core::bsdf::{Masking, MicrofacetModel, MicrofacetStyle, PlasticCoat};
 use mcrender_core::color::Rgb;
+use mcrender_core::material::{
+    ConductorMaterial, DielectricMaterial, DiffuseMaterial, NormalMapMaterial, PlasticMaterial, ThinDielectricMaterial,
+};
 use mcrender_core::scene::MaterialDesc;
 use mcrender_core::texture::RgbTexture;
 
@@ -47,7 +50,7 @@ impl Builder {
         let surface = match kind {
             "diffuse" => {
                 let reflectance = self.rgb_param(&mut p, "reflectance", Rgb::splat(0.5), false)?;
-                self.plain(MaterialDesc::Diffuse { reflectance })
+                self.plain(MaterialDesc::Diffuse(DiffuseMaterial { reflectance }))
             }
             "twosided" | "mask" | "normalmap" => {
                 let inner: Vec<_> = p.nested("bsdf");
@@ -85,10 +88,10 @@ impl Builder {
                     }
                     let normal_map = self.rgb_param(&mut p, "normalmap", Rgb::new(0.5, 0.5, 1.0), false)?;
                     Surface {
-                        material: self.add_material(MaterialDesc::NormalMap {
+                        material: self.add_material(MaterialDesc::NormalMap(NormalMapMaterial {
                             material: inner.material,
                             normal_map,
-                        }),
+                        })),
                         alpha: inner.alpha,
                     }
                 } else if kind == "mask" {
@@ -111,16 +114,16 @@ impl Builder {
                 no_tint(&mut p, "specular_transmittance")?;
                 let eta = int_ior / ext_ior;
                 if kind == "thindielectric" {
-                    self.plain(MaterialDesc::ThinDielectric { eta })
+                    self.plain(MaterialDesc::ThinDielectric(ThinDielectricMaterial { eta }))
                 } else {
                     let (u, v, microfacet) = self.roughness(&mut p, kind == "roughdielectric")?;
-                    self.plain(MaterialDesc::Dielectric {
+                    self.plain(MaterialDesc::Dielectric(DielectricMaterial {
                         eta,
                         u_roughness: u.into(),
                         v_roughness: v.into(),
                         remap_roughness: false,
                         microfacet,
-                    })
+                    }))
                 }
             }
             "conductor" | "roughconductor" => {
@@ -163,7 +166,7 @@ impl Builder {
                         "a conductor with ext_eta other than 1",
                     ));
                 };
-                self.plain(MaterialDesc::Conductor {
+                self.plain(MaterialDesc::Conductor(ConductorMaterial {
                     eta,
                     k,
                     reflectance,
@@ -171,7 +174,7 @@ impl Builder {
                     v_roughness: v.into(),
                     remap_roughness: false,
                     microfacet,
-                })
+                }))
             }
             "plastic" | "roughplastic" => {
                 let int_ior = ior(&mut p, "int_ior", 1.49)?;
@@ -203,13 +206,13 @@ impl Builder {
                 };
                 let (d, s) = (texture_mean(&diffuse_reflectance), texture_mean(&specular_reflectance));
                 let specular_sampling_weight = if d + s > 0.0 { s / (d + s) } else { 0.5 };
-                self.plain(MaterialDesc::Plastic {
+                self.plain(MaterialDesc::Plastic(PlasticMaterial {
                     diffuse_reflectance,
                     specular_reflectance,
                     nonlinear,
                     specular_sampling_weight,
                     coat,
-                })
+                }))
             }
             "principled" | "principledthin" | "bumpmap" | "blendbsdf" | "pplastic" | "hair" | "measured"
             | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),

@@ -3,6 +3,7 @@
 //! integrator settings. Shapes, BSDFs, emitters and textures live in their own modules as
 //! further `impl Builder` blocks.
 
+use mcrender_core::material::DiffuseMaterial;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -200,9 +201,9 @@ impl Builder {
         let material = match self.default_material {
             Some(m) => m,
             None => {
-                let m = self.add_material(MaterialDesc::Diffuse {
+                let m = self.add_material(MaterialDesc::Diffuse(DiffuseMaterial {
                     reflectance: Rgb::splat(0.5).into(),
-                });
+                }));
                 self.default_material = Some(m);
                 m
             }

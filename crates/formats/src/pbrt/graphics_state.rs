@@ -4,6 +4,7 @@
 
 use glam::Mat4;
 use mcrender_core::color::Rgb;
+use mcrender_core::material::DiffuseMaterial;
 use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc};
 
 use super::params::Param;
@@ -70,9 +71,9 @@ impl Default for GraphicsState {
             ctm: Mat4::IDENTITY,
             reverse_orientation: false,
             // pbrt-v4's material before any Material directive: diffuse, reflectance 0.5.
-            material: MaterialRef::Inline(MaterialDesc::Diffuse {
+            material: MaterialRef::Inline(MaterialDesc::Diffuse(DiffuseMaterial {
                 reflectance: Rgb::splat(0.5).into(),
-            }),
+            })),
             area_light: None,
             attributes: Attributes::default(),
         }

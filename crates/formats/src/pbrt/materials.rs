@@ -30,6 +30,10 @@
 //!
 //! `hair`, `measured` and `subsurface` are reported as not supported yet.
 
+use mcrender_core::material::{
+    CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial,
+    DiffuseTransmissionMaterial, MixMaterial, ThinDielectricMaterial,
+};
 use std::collections::HashMap;
 
 use mcrender_core::color::Rgb;
@@ -163,7 +167,7 @@ impl SceneBuilder {
                     ));
                 }
                 self.warn_unused(params);
-                Ok(MaterialDesc::Diffuse { reflectance })
+                Ok(MaterialDesc::Diffuse(DiffuseMaterial { reflectance }))
             }
             "conductor" => {
                 let reflectance = self.spectrum_param(params, "reflectance", SpectrumKind::Albedo)?;
@@ -185,7 +189,7 @@ impl SceneBuilder {
                 let (u_roughness, v_roughness) = self.roughness(params)?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 self.warn_unused(params);
-                Ok(MaterialDesc::Conductor {
+                Ok(MaterialDesc::Conductor(ConductorMaterial {
                     eta: eta.unwrap_or_else(|| metal_rgb("metal-Cu-eta").unwrap_or(Rgb::WHITE).into()),
                     k: k.unwrap_or_else(|| metal_rgb("metal-Cu-k").unwrap_or(Rgb::BLACK).into()),
                     reflectance,
@@ -193,25 +197,25 @@ impl SceneBuilder {
                     v_roughness,
                     remap_roughness,
                     microfacet: Default::default(),
-                })
+                }))
             }
             "dielectric" => {
                 let eta = dielectric_eta(params)?;
                 let (u_roughness, v_roughness) = self.roughness(params)?;
                 let remap_roughness = params.bool("remaproughness", true)?;
                 self.warn_unused(params);
-                Ok(MaterialDesc::Dielectric {
+                Ok(MaterialDesc::Dielectric(DielectricMaterial {
                     eta,
                     u_roughness,
                     v_roughness,
                     remap_roughness,
                     microfacet: Default::default(),
-                })
+                }))
             }
             "thindielectric" => {
                 let eta = dielectric_eta(params)?;
                 self.warn_unused(params);
-                Ok(MaterialDesc::ThinDielectric { eta })
+                Ok(MaterialDesc::ThinDielectric(ThinDielectricMaterial { eta }))
             }
             "diffusetransmission" => {
                 let default = || RgbTexture::from(Rgb::splat(0.25));
@@ -235,11 +239,11 @@ impl SceneBuilder {
                     ));
                 }
                 self.warn_unused(params);
-                Ok(MaterialDesc::DiffuseTransmission {
+                Ok(MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
                     reflectance,
                     transmittance,
                     scale,
-                })
+                }))
             }
             "coateddiffuse" => {
                 let reflectance = self
@@ -253,7 +257,7 @@ impl SceneBuilder {
                 let eta = dielectric_eta(params)?;
                 let slab = slab(self, params)?;
                 self.warn_unused(params);
-                Ok(MaterialDesc::CoatedDiffuse {
+                Ok(MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
                     reflectance,
                     u_roughness,
                     v_roughness,
@@ -264,7 +268,7 @@ impl SceneBuilder {
                     g: slab.g,
                     max_depth: slab.max_depth,
                     n_samples: slab.n_samples,
-                })
+                }))
             }
             "coatedconductor" => {
                 let (interface_u_roughness, interface_v_roughness) = self.prefixed_roughness(params, "interface.")?;
@@ -289,7 +293,7 @@ impl SceneBuilder {
                 let remap_roughness = params.bool("remaproughness", true)?;
                 let slab = slab(self, params)?;
                 self.warn_unused(params);
-                Ok(MaterialDesc::CoatedConductor {
+                Ok(MaterialDesc::CoatedConductor(CoatedConductorMaterial {
                     interface_u_roughness,
                     interface_v_roughness,
                     interface_eta,
@@ -304,7 +308,7 @@ impl SceneBuilder {
                     g: slab.g,
                     max_depth: slab.max_depth,
                     n_samples: slab.n_samples,
-                })
+                }))
             }
             // pbrt-v4: no material at all; rays pass through (medium boundaries).
             "interface" | "" | "none" => {
@@ -417,10 +421,10 @@ pub(super) fn resolve_material(
                 };
                 *id = resolve_material(named, &r, materials, ids, stack)?;
             }
-            let desc = MaterialDesc::Mix {
+            let desc = MaterialDesc::Mix(MixMaterial {
                 materials: pair,
                 amount: amount.clone(),
-            };
+            });
             Ok(intern_material(materials, ids, desc))
         }
     }
