@@ -334,8 +334,8 @@ mod tests {
         assert!((p.variance_of_mean().g - 5.0 / 12.0).abs() < 1e-6);
     }
 
+    use crate::film::FilterDesc;
     use crate::math::Vec2;
-    use crate::scene::FilterDesc;
 
     /// A box one pixel wide: every splat lands on the pixel containing it.
     fn pixel_box() -> Filter {

@@ -48,7 +48,7 @@
 //!
 //! In BDPT both estimates meet in one pixel: the camera-side strategies through the pixel's
 //! weighted mean, the `t = 1` strategies through its splats. Their MIS weights
-//! ([`crate::integrator::BdptIntegrator`]) use the same `pdf_we` for every strategy and sum
+//! (`integrator::BdptIntegrator`) use the same `pdf_we` for every strategy and sum
 //! to one for every path, and every strategy can produce every path whose film point lies
 //! in the support of the pixel's filter, so the sum is the same filtered integral. The
 //! only bias left is that of the camera side's ratio estimator `sum w L / sum w`, of order

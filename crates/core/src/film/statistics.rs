@@ -82,7 +82,7 @@ mod tests {
         let mut f = Film::new(1, 1);
         f.pixel_mut(0, 0).add(Rgb::splat(1.0), 1.0);
         f.add_samples_per_pixel(2);
-        let pixel_box = crate::film::Filter::new(&crate::scene::FilterDesc::Box {
+        let pixel_box = crate::film::Filter::new(&crate::film::FilterDesc::Box {
             radius: crate::math::Vec2::splat(0.5),
         });
         assert!(f.add_splat(
