@@ -67,8 +67,7 @@ pub fn framing_camera(lo: Vec3, hi: Vec3) -> (CameraDesc, Vec3) {
     // The bounding sphere fits inside the cone of half-angle fov/2 at this distance.
     let distance = 1.05 * radius / (0.5 * DEFAULT_FOV_DEGREES).to_radians().sin();
     let eye = centre + distance * VIEW_DIRECTION.normalize();
-    let camera_from_world =
-        crate::pbrt::transform::look_at(eye, centre, Vec3::Y).expect("the view direction is not along y");
+    let camera_from_world = crate::transform::look_at(eye, centre, Vec3::Y).expect("the view direction is not along y");
     let world_from_camera = Transform::new(camera_from_world.inverse()).expect("a look-at matrix is invertible");
     (
         CameraDesc {

@@ -8,6 +8,8 @@
 //! * [`obj`]: Wavefront OBJ meshes; [`obj_scene`]: an OBJ file as a whole scene;
 //! * [`gltf`]: glTF 2.0 scenes (`.gltf`, `.glb`);
 //! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
+//! * shared by the loaders: [`LoadedScene`] (what each returns), [`spectra`] (spectra to
+//!   RGB), [`transform`] (transform matrices), [`image_io`], [`limits`], [`source`];
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
 //!   [`image_io::write_exr_layers`], [`image_io::read_image`] (EXR, PFM, PNG, JPEG, TGA).
 
@@ -18,14 +20,18 @@ pub mod gltf;
 pub mod image_io;
 pub mod limits;
 mod load;
+mod loaded;
 pub mod mitsuba;
 pub mod obj;
 pub mod obj_scene;
 pub mod pbrt;
 pub mod ply;
 pub mod source;
+pub mod spectra;
+pub mod transform;
 
 pub use error::{escape_control, io_error_text, quoted, tidy_message, Location, SceneError, SceneErrorKind};
 pub use image_io::{read_exr, read_image, read_pfm, write_exr_layers, write_image, write_images, ImageError, ImageRgb};
 pub use load::{load, load_with, LoadOptions, SceneFormat};
-pub use pbrt::{load_file, load_file_with, load_str, load_str_with, LoadedScene};
+pub use loaded::LoadedScene;
+pub use pbrt::{load_file, load_file_with, load_str, load_str_with};

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use crate::error::SceneError;
 use crate::limits::LoadLimits;
-use crate::pbrt::LoadedScene;
+use crate::LoadedScene;
 
 /// Options of [`load_with`].
 #[derive(Clone, Debug, Default)]

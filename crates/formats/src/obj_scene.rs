@@ -28,7 +28,7 @@ use crate::error::{io_error_text, quoted, Location, SceneError};
 use crate::image_io::{decode_image, image_dimensions, ColorEncoding, ImageError, ImageFormat};
 use crate::limits::{count_image_bytes, image_texture_bytes, LoadLimits};
 use crate::obj::parse_obj;
-use crate::pbrt::LoadedScene;
+use crate::LoadedScene;
 
 /// Index of refraction of the coat of a glossy MTL material and of a dielectric without `Ni`.
 const DEFAULT_IOR: f32 = 1.5;

@@ -27,7 +27,7 @@ use mcrender_core::scene::{CameraDesc, FilmDesc, GeometryDesc, SceneDescription,
 
 use crate::error::{io_error_text, Location, SceneError};
 use crate::limits::LoadLimits;
-use crate::pbrt::LoadedScene;
+use crate::LoadedScene;
 use data::Buffers;
 use materials::Materials;
 

@@ -20,7 +20,7 @@ use super::props::Props;
 use super::xml::{Element, Reader};
 use crate::error::{tidy_message, SceneError};
 use crate::limits::LoadLimits;
-use crate::pbrt::LoadedScene;
+use crate::LoadedScene;
 
 /// A decoded image: width, height, texels.
 pub type ImageEntry = (u32, u32, Arc<Vec<Rgb>>);

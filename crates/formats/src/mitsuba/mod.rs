@@ -31,8 +31,8 @@ use std::sync::Arc;
 
 use crate::error::SceneError;
 use crate::limits::LoadLimits;
-use crate::pbrt::LoadedScene;
 use crate::source::{DiskFiles, FileSource};
+use crate::LoadedScene;
 
 /// Load a Mitsuba XML scene; `defines` are `(name, value)` pairs that override the scene's
 /// `<default>`s.

@@ -10,7 +10,7 @@
 
 use mcrender_core::color::Rgb;
 
-use crate::pbrt::spectrum_rgb::{cie_xyz, xyz_to_linear_srgb};
+use crate::spectra::{cie_xyz, xyz_to_linear_srgb};
 
 /// Mitsuba's named indices of refraction.
 #[must_use]
@@ -46,7 +46,7 @@ pub fn named_ior(name: &str) -> Option<f32> {
 /// The pbrt name of the spectra of a Mitsuba conductor `material`, when mcrender has them.
 #[must_use]
 pub fn conductor_spectra(name: &str) -> Option<(Rgb, Rgb)> {
-    use crate::pbrt::spectra::metal_rgb;
+    use crate::spectra::metal_rgb;
     let pbrt = match name {
         "Ag" | "Al" | "Au" | "Cu" => name,
         _ => return None,

@@ -35,9 +35,9 @@ use mcrender_core::scene::{AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, Li
 use super::builder::SceneBuilder;
 use super::files::ImageUse;
 use super::params::{ParamSet, ParamType};
-use super::spectrum_rgb::SpectrumRole;
 use crate::error::{Location, SceneError};
 use crate::image_io::{ColorEncoding, ImageRgb};
+use crate::spectra::SpectrumRole;
 
 impl SceneBuilder {
     /// `AreaLightSource "diffuse" ...`: emission for subsequent shapes in this scope.
@@ -329,7 +329,7 @@ fn non_negative(params: &ParamSet, name: &str, default: f32) -> Result<f32, Scen
 /// An emitted colour `name` (default white) times `scale` (default 1); both non-negative.
 ///
 /// Spectra as (wavelength, value) pairs and `blackbody` temperatures become the RGB of
-/// luminance 1 that pbrt-v4's normalisation leaves (see [`super::spectrum_rgb`]).
+/// luminance 1 that pbrt-v4's normalisation leaves (see [`crate::spectra`]).
 /// `"spectrum L" "stdillum-D65"` is accepted too: pbrt normalises an emission spectrum by its
 /// luminance, and the sRGB white point is D65, so it is exactly RGB white.
 fn emission(params: &ParamSet, name: &str) -> Result<Rgb, SceneError> {

@@ -7,7 +7,7 @@
 //! (and `interface.eta`) stays a constant, as in pbrt-v4. Range checks apply to constants. `displacement` and `normalmap` are warned about and ignored.
 //! - `diffuse`: `reflectance` (default 0.5).
 //! - `conductor`: `eta` and `k` as `rgb` or as a named spectrum (`metal-Cu-eta`,
-//!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`super::spectra`]), default copper; or
+//!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`crate::spectra`]), default copper; or
 //!   `rgb reflectance` instead of both; `float roughness` or `uroughness`/`vroughness`
 //!   (default 0); `bool remaproughness` (default true).
 //! - `dielectric`: `float eta` or a named glass spectrum (`glass-BK7`, ...; its value at
@@ -42,9 +42,8 @@ use mcrender_core::scene::{FloatTexture, MaterialDesc, MaterialId, RgbTexture};
 use super::builder::SceneBuilder;
 use super::graphics_state::MaterialRef;
 use super::params::{ParamSet, ParamType};
-use super::spectra::{glass_eta, metal_rgb, KNOWN_UNCONVERTED};
-use super::spectrum_rgb::{sampled_spectrum, spectrum_pairs, SpectrumRole};
 use crate::error::{Location, SceneError};
+use crate::spectra::{glass_eta, metal_rgb, sampled_spectrum, spectrum_pairs, SpectrumRole, KNOWN_UNCONVERTED};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
 const KNOWN_MATERIALS: &[&str] = &["hair", "measured", "subsurface"];

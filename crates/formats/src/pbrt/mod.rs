@@ -24,7 +24,7 @@
 //!
 //! Layout: `tokenizer` splits text into tokens, `params` types parameter lists, `parser`
 //! reads directives, `builder` (with `graphics_state`, `options`, `materials`, `lights`,
-//! `shapes`, `textures`) gives them meaning, `transform` has pbrt's transform matrices.
+//! `shapes`, `textures`) gives them meaning, `crate::transform` has pbrt's transform matrices.
 
 mod builder;
 mod files;
@@ -36,35 +36,16 @@ mod options;
 mod params;
 mod parser;
 mod shapes;
-pub(crate) mod spectra;
-pub(crate) mod spectrum_rgb;
 mod textures;
 mod tokenizer;
-pub(crate) mod transform;
 
 use std::path::Path;
 use std::sync::Arc;
 
-use mcrender_core::scene::SceneDescription;
-
 use crate::error::{io_error_text, Location, SceneError};
 use crate::limits::LoadLimits;
+pub use crate::loaded::LoadedScene;
 use crate::source::{DiskFiles, FileSource};
-
-/// A loaded scene: what the renderer needs, where pbrt would write the image, and the
-/// warnings to show the user.
-#[derive(Clone, Debug)]
-pub struct LoadedScene {
-    /// The scene.
-    pub description: SceneDescription,
-    /// `Film "string filename"`, when given (as written in the file).
-    pub output_filename: Option<String>,
-    /// Warnings, each `file:line:col: warning: ...`.
-    pub warnings: Vec<String>,
-    /// Estimated bytes the images read (textures, environment maps) take while loading and
-    /// rendering; the meshes are in [`Self::description`].
-    pub image_bytes: u64,
-}
 
 /// How to load: where files come from and what the load may cost.
 #[derive(Clone, Debug)]

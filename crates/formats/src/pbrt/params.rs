@@ -10,9 +10,9 @@ use std::cell::Cell;
 use glam::Vec3;
 use mcrender_core::color::Rgb;
 
-use super::spectrum_rgb::{blackbody_rgb, sampled_spectrum, spectrum_pairs, spectrum_to_rgb, SpectrumRole};
 use super::tokenizer::{parse_number, Token, TokenKind};
 use crate::error::{Location, SceneError};
+use crate::spectra::{blackbody_rgb, sampled_spectrum, spectrum_pairs, spectrum_to_rgb, SpectrumRole};
 
 /// The declared type of a parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -515,7 +515,7 @@ impl ParamSet {
 
     /// A single colour: `rgb` as given; `spectrum` as (wavelength nm, value) pairs, or
     /// `blackbody` (a temperature in Kelvin), converted to linear sRGB once by `role` (see
-    /// [`super::spectrum_rgb`]). Named spectra and `texture` are left to the callers that
+    /// [`crate::spectra`]). Named spectra and `texture` are left to the callers that
     /// accept them and reported here as not supported.
     ///
     /// # Errors

@@ -12,9 +12,9 @@ use glam::Vec3;
 use super::builder::SceneBuilder;
 use super::params::{number, Param, ParamSet};
 use super::tokenizer::{Token, TokenKind, Tokenizer};
-use super::transform::{from_pbrt_array, look_at, rotate, scale, translate};
 use super::{LoadOptions, LoadedScene};
 use crate::error::{io_error_text, Location, SceneError};
+use crate::transform::{from_pbrt_array, look_at, rotate, scale, translate};
 
 /// How deeply `Include` may nest (a file including itself hits this).
 const MAX_INCLUDE_DEPTH: usize = 64;

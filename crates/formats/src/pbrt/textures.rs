@@ -37,9 +37,9 @@ use mcrender_core::texture::{
 use super::builder::SceneBuilder;
 use super::files::ImageUse;
 use super::params::{color_of, Param, ParamSet, ParamType, ParamValues};
-use super::spectrum_rgb::SpectrumRole;
 use crate::error::{Location, SceneError};
 use crate::image_io::ColorEncoding;
+use crate::spectra::SpectrumRole;
 
 /// pbrt-v4 texture classes that are not implemented.
 const KNOWN_CLASSES: &[&str] = &[

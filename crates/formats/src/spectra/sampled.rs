@@ -10,7 +10,7 @@
 //!   the spectrum's average weighted by what that channel sees, the linear sRGB of the
 //!   spectrum's XYZ divided, channel by channel, by that of the constant spectrum 1. A
 //!   constant spectrum maps to itself. Albedos are then clamped to [0, 1] as pbrt clamps
-//!   them. This is the method used for the named metal spectra in [`super::spectra`].
+//!   them. This is the method used for the named metal spectra in [`super::named`].
 //!
 //! XYZ integrals run from 360 to 830 nm in 1 nm steps, against the CIE 1931 2-degree colour
 //! matching functions in the multi-lobe Gaussian fit of Wyman, Sloan and Shirley (2013,

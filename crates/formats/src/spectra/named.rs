@@ -1,5 +1,5 @@
-//! pbrt-v4's named spectra (`"spectrum eta" "metal-Cu-eta"`, `"glass-BK7"`, ...) reduced
-//! to what an RGB renderer uses, once, at load time.
+//! Named spectra (`"metal-Cu-eta"`, `"glass-BK7"`, ...; pbrt-v4's names, also used for
+//! Mitsuba's conductors) reduced to what an RGB renderer uses, once, at load time.
 //!
 //! Method. The tabulated spectra are those of pbrt-v4 (`src/pbrt/util/spectrum.cpp`;
 //! metal indices from measured data, glass indices from refractiveindex.info). They were
