@@ -62,12 +62,11 @@ pub fn mesh_bounds(desc: &SceneDescription) -> Option<(Vec3, Vec3)> {
 /// [`VIEW_DIRECTION`], with the eye point it sits at.
 #[must_use]
 pub fn framing_camera(lo: Vec3, hi: Vec3) -> (CameraDesc, Vec3) {
-    let centre = 0.5 * (lo + hi);
-    let radius = (0.5 * (hi - lo).length()).max(1e-3);
-    // The bounding sphere fits inside the cone of half-angle fov/2 at this distance.
-    let distance = 1.05 * radius / (0.5 * DEFAULT_FOV_DEGREES).to_radians().sin();
-    let eye = centre + distance * VIEW_DIRECTION.normalize();
-    let camera_from_world = crate::transform::look_at(eye, centre, Vec3::Y).expect("the view direction is not along y");
+    let (eye, camera_from_world) = framing_view(lo, hi)
+        // Bounds too large for f32 arithmetic (the core refuses such scenes when it
+        // validates them, naming the coordinate): frame the unit box instead.
+        .or_else(|| framing_view(Vec3::splat(-1.0), Vec3::splat(1.0)))
+        .expect("the unit box can be framed");
     let world_from_camera = Transform::new(camera_from_world.inverse()).expect("a look-at matrix is invertible");
     (
         CameraDesc {
@@ -77,6 +76,20 @@ pub fn framing_camera(lo: Vec3, hi: Vec3) -> (CameraDesc, Vec3) {
         },
         eye,
     )
+}
+
+/// The eye point and camera-from-world matrix looking at the bounding sphere of `(lo,
+/// hi)`; `None` when that sphere is too large for the arithmetic to stay finite.
+fn framing_view(lo: Vec3, hi: Vec3) -> Option<(Vec3, glam::Mat4)> {
+    let centre = 0.5 * (lo + hi);
+    let radius = (0.5 * (hi - lo)).length().max(1e-3);
+    // The bounding sphere fits inside the cone of half-angle fov/2 at this distance.
+    let distance = 1.05 * radius / (0.5 * DEFAULT_FOV_DEGREES).to_radians().sin();
+    let eye = centre + distance * VIEW_DIRECTION.normalize();
+    if !(eye.is_finite() && centre.is_finite()) {
+        return None;
+    }
+    crate::transform::look_at(eye, centre, Vec3::Y).ok().map(|m| (eye, m))
 }
 
 /// Give `desc` a framing camera when `has_camera` is false and a uniform white environment
@@ -122,6 +135,17 @@ mod tests {
                 c.x.abs() / c.z <= half && c.y.abs() / c.z <= half,
                 "corner {corner} at {c}"
             );
+        }
+    }
+
+    /// Found by the `obj` fuzz target (session 6): a vertex at 6.7e23 made the bounding
+    /// sphere's radius infinite, and the look-at `expect` panicked.
+    #[test]
+    fn regression_huge_bounds_frame_the_unit_box_instead_of_panicking() {
+        for hi in [Vec3::new(6.7e23, 1.0, 0.0), Vec3::splat(f32::MAX)] {
+            let (camera, eye) = framing_camera(Vec3::splat(-1.0), hi);
+            assert!(eye.is_finite(), "{eye}");
+            assert_eq!(camera, framing_camera(Vec3::splat(-1.0), Vec3::splat(1.0)).0);
         }
     }
 }
