@@ -2,7 +2,7 @@
 //! triangle, a node hierarchy, a camera, lights, textured and emissive materials, GLB and
 //! data URIs) and malformed ones, whose errors must name the JSON path.
 
-use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial};
+use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial, NormalMapMaterial};
 use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
@@ -277,7 +277,7 @@ fn textures_factors_emission_and_transmission_become_materials() {
                 "extensions": {"KHR_texture_transform": {"offset": [0.25, 0.0], "scale": [2.0, 1.0], "rotation": 0.5}}},
             "metallicFactor": 0.5, "roughnessFactor": 1.0,
             "metallicRoughnessTexture": {"index": 1}},
-         "normalTexture": {"index": 1}},
+         "normalTexture": {"index": 1, "scale": 0.5}},
         {"emissiveFactor": [1.0, 0.5, 0.25],
          "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}},
         {"pbrMetallicRoughness": {"roughnessFactor": 0.5},
@@ -296,11 +296,23 @@ fn textures_factors_emission_and_transmission_become_materials() {
     let s = load(&path).unwrap_or_else(|e| panic!("{e}"));
     let d = &s.description;
     assert_eq!(d.shapes.len(), 3);
+    // The normal texture wraps the material: texels linear, x and y of 2 c - 1 times
+    // the scale 0.5 (mr.png's first texel is (0, 255, 128)).
+    let MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }) =
+        &d.materials[d.shapes[0].material as usize]
+    else {
+        panic!("{:?}", d.materials)
+    };
+    let Texture::Bitmap(n) = normal_map else {
+        panic!("{normal_map:?}")
+    };
+    assert_eq!(n.texels[0], Rgb::new(0.25, 0.75, 128.0 / 255.0));
+    assert_eq!(n.texels[1], Rgb::new(0.25, 0.25, 1.0));
     let MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
         base_color,
         metallic,
         roughness,
-    }) = &d.materials[d.shapes[0].material as usize]
+    }) = &d.materials[*material as usize]
     else {
         panic!()
     };
@@ -345,7 +357,6 @@ fn textures_factors_emission_and_transmission_become_materials() {
     );
     let w = s.warnings.join("\n");
     assert!(w.contains("EXT_made_up is not supported"), "{w}");
-    assert!(w.contains("materials[0].normalTexture is ignored"), "{w}");
     assert!(w.contains("KHR_texture_transform.rotation 0.5 is ignored"), "{w}");
     // The emissive triangle lights the scene: no environment light added.
     assert!(d.lights.is_empty(), "{:?}", d.lights);

@@ -5,11 +5,15 @@
 //! an `emissiveTexture`) as an area light, and `KHR_materials_transmission` (factor >= 0.5)
 //! with `KHR_materials_ior` as a dielectric of that index and roughness. Textures are
 //! bilinear, wrapped as the sampler's `wrapS`, and honour `KHR_texture_transform` without
-//! rotation. Ignored, with a warning: normal and occlusion textures, a second texture
-//! coordinate set, alpha blending and masking. Each image is sized from its header and
-//! counted against the load's memory limit before it is decoded.
+//! rotation. A `normalTexture` (times its `scale` in x and y) wraps the material in a
+//! [`MaterialDesc::NormalMap`] whose tangent frame is the one glTF's sample viewer builds
+//! when a mesh has no `TANGENT`s: the shading tangent is dp/du from `TEXCOORD_0`, made
+//! orthogonal to the shading normal, and the bitangent is `normal x tangent`; `TANGENT`
+//! attributes are not read (a warning says so where a normal map would use them).
+//! Ignored, with a warning: occlusion textures, a second texture coordinate set, alpha
+//! blending and masking. Each image is sized from its header and counted against the
+//! load's memory limit before it is decoded.
 
-use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::Path;
@@ -17,6 +21,7 @@ use std::sync::Arc;
 
 use gltf::texture::WrappingMode;
 use mcrender_core::color::Rgb;
+use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial, NormalMapMaterial};
 use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc, MaterialId, RgbTexture};
 use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
 
@@ -30,6 +35,55 @@ pub struct Converted {
     pub material: MaterialId,
     /// Emission, when the material is emissive.
     pub area_light: Option<AreaLightDesc>,
+    /// The material has a normal map, whose tangent frame comes from the uvs.
+    pub normal_mapped: bool,
+}
+
+/// A texture as a material refers to it: the texture, its uv set and its
+/// `KHR_texture_transform` (offset, scale, rotation).
+struct TextureRef<'a> {
+    texture: gltf::Texture<'a>,
+    tex_coord: u32,
+    offset: [f32; 2],
+    scale: [f32; 2],
+    rotation: f32,
+}
+
+impl<'a> TextureRef<'a> {
+    fn from_info(info: &gltf::texture::Info<'a>) -> Self {
+        let t = info.texture_transform();
+        Self {
+            texture: info.texture(),
+            tex_coord: info.tex_coord(),
+            offset: t.as_ref().map_or([0.0, 0.0], gltf::texture::TextureTransform::offset),
+            scale: t.as_ref().map_or([1.0, 1.0], gltf::texture::TextureTransform::scale),
+            rotation: t.as_ref().map_or(0.0, gltf::texture::TextureTransform::rotation),
+        }
+    }
+
+    /// A normal texture, whose reference type has no transform accessor: read from its
+    /// `KHR_texture_transform` JSON.
+    fn from_normal(n: &gltf::material::NormalTexture<'a>) -> Self {
+        let t = n.extension_value("KHR_texture_transform");
+        let pair = |key: &str, default: [f32; 2]| -> [f32; 2] {
+            t.and_then(|t| t.get(key))
+                .and_then(|v| v.as_array())
+                .filter(|a| a.len() == 2)
+                .and_then(|a| Some([a[0].as_f64()? as f32, a[1].as_f64()? as f32]))
+                .unwrap_or(default)
+        };
+        Self {
+            texture: n.texture(),
+            tex_coord: n.tex_coord(),
+            offset: pair("offset", [0.0, 0.0]),
+            scale: pair("scale", [1.0, 1.0]),
+            rotation: t
+                .and_then(|t| t.get("rotation"))
+                .and_then(gltf::json::Value::as_f64)
+                .map(|r| r as f32)
+                .unwrap_or(0.0),
+        }
+    }
 }
 
 /// A decoded glTF image: width, height, and linear-or-encoded texel values in [0, 1].
@@ -92,9 +146,16 @@ impl<'a> Materials<'a> {
             .map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
         let (desc, area_light) = self.convert(m, &path, warnings)?;
         materials.push(desc);
+        let normal_map = self.normal_map(m, &path, warnings)?;
+        let normal_mapped = normal_map.is_some();
+        if let Some(normal_map) = normal_map {
+            let material = (materials.len() - 1) as MaterialId;
+            materials.push(MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }));
+        }
         let c = Converted {
             material: (materials.len() - 1) as MaterialId,
             area_light,
+            normal_mapped,
         };
         self.done.insert(m.index(), c);
         Ok(c)
@@ -106,9 +167,6 @@ impl<'a> Materials<'a> {
         path: &str,
         warnings: &mut Vec<String>,
     ) -> Result<(MaterialDesc, Option<AreaLightDesc>), String> {
-        if m.normal_texture().is_some() {
-            warnings.push(format!("{path}.normalTexture is ignored (no normal mapping yet)"));
-        }
         if m.occlusion_texture().is_some() {
             warnings.push(format!(
                 "{path}.occlusionTexture is ignored (occlusion is computed, not painted)"
@@ -122,6 +180,7 @@ impl<'a> Materials<'a> {
         let factor = Rgb::new(r, g, b);
         let base_color: RgbTexture = match pbr.base_color_texture() {
             Some(info) => {
+                let info = TextureRef::from_info(&info);
                 let img = self.image(
                     &info,
                     &format!("{path}.pbrMetallicRoughness.baseColorTexture"),
@@ -134,6 +193,7 @@ impl<'a> Materials<'a> {
         };
         let (metallic, roughness): (FloatTexture, FloatTexture) = match pbr.metallic_roughness_texture() {
             Some(info) => {
+                let info = TextureRef::from_info(&info);
                 let img = self.image(
                     &info,
                     &format!("{path}.pbrMetallicRoughness.metallicRoughnessTexture"),
@@ -158,7 +218,11 @@ impl<'a> Materials<'a> {
         let [er, eg, eb] = m.emissive_factor();
         let mut emission = Rgb::new(er, eg, eb) * strength;
         if let Some(info) = m.emissive_texture() {
-            let img = self.image(&info, &format!("{path}.emissiveTexture"), warnings)?;
+            let img = self.image(
+                &TextureRef::from_info(&info),
+                &format!("{path}.emissiveTexture"),
+                warnings,
+            )?;
             let n = img.texels.len().max(1) as f32;
             let mean = img.texels.iter().fold(Rgb::BLACK, |s, t| s + t.map(srgb_to_linear)) * (1.0 / n);
             warnings.push(format!(
@@ -203,28 +267,47 @@ impl<'a> Materials<'a> {
         ))
     }
 
-    /// The image of texture `info`, decoded once (values as stored, in [0, 1]).
-    fn image(
+    /// The normal map of `m`: its texels (linear, as stored) with `normal = 2 c - 1`
+    /// scaled by the texture's `scale` in x and y (glTF 2.0, 3.9.3), written back as
+    /// `(normal + 1) / 2` for [`NormalMapMaterial`].
+    fn normal_map(
         &mut self,
-        info: &gltf::texture::Info<'_>,
+        m: &gltf::Material<'_>,
         path: &str,
         warnings: &mut Vec<String>,
-    ) -> Result<Arc<Image>, String> {
-        if let Some(t) = info.texture_transform() {
-            if t.rotation() != 0.0 {
-                warnings.push(format!(
-                    "{path}.extensions.KHR_texture_transform.rotation {} is ignored (offset and scale are read)",
-                    t.rotation()
-                ));
-            }
-        }
-        if info.tex_coord() != 0 {
+    ) -> Result<Option<RgbTexture>, String> {
+        let Some(n) = m.normal_texture() else {
+            return Ok(None);
+        };
+        let info = TextureRef::from_normal(&n);
+        let img = self.image(&info, &format!("{path}.normalTexture"), warnings)?;
+        let s = n.scale();
+        let texels = img
+            .texels
+            .iter()
+            .map(|c| {
+                let scaled = |v: f32, k: f32| 0.5 * ((2.0 * v - 1.0) * k + 1.0);
+                Rgb::new(scaled(c.r, s), scaled(c.g, s), c.b)
+            })
+            .collect();
+        Ok(Some(bitmap(&info, &img, texels)))
+    }
+
+    /// The image of texture `info`, decoded once (values as stored, in [0, 1]).
+    fn image(&mut self, info: &TextureRef<'_>, path: &str, warnings: &mut Vec<String>) -> Result<Arc<Image>, String> {
+        if info.rotation != 0.0 {
             warnings.push(format!(
-                "{path}.texCoord {} is read as TEXCOORD_0 (one uv set)",
-                info.tex_coord()
+                "{path}.extensions.KHR_texture_transform.rotation {} is ignored (offset and scale are read)",
+                info.rotation
             ));
         }
-        let source = info.texture().source();
+        if info.tex_coord != 0 {
+            warnings.push(format!(
+                "{path}.texCoord {} is read as TEXCOORD_0 (one uv set)",
+                info.tex_coord
+            ));
+        }
+        let source = info.texture.source();
         if let Some(img) = self.images.get(&source.index()) {
             return Ok(img.clone());
         }
@@ -310,15 +393,9 @@ fn decode(data: &gltf::image::Data) -> Option<Image> {
 /// Mesh uvs are stored with `v` flipped (`1 - v`, row 0 at the top as in glTF), so a
 /// glTF transform `uv' = uv * scale + offset` becomes `s = su u + du`, `t = sv v + dv`
 /// with `dv = 1 - scale_v - offset_v`.
-fn bitmap<T: mcrender_core::texture::TextureValue>(
-    info: &gltf::texture::Info<'_>,
-    img: &Image,
-    texels: Vec<Rgb>,
-) -> Texture<T> {
-    let (offset, scale) = info
-        .texture_transform()
-        .map_or(([0.0, 0.0], [1.0, 1.0]), |t| (t.offset(), t.scale()));
-    let wrap = match info.texture().sampler().wrap_s() {
+fn bitmap<T: mcrender_core::texture::TextureValue>(info: &TextureRef<'_>, img: &Image, texels: Vec<Rgb>) -> Texture<T> {
+    let (offset, scale) = (info.offset, info.scale);
+    let wrap = match info.texture.sampler().wrap_s() {
         WrappingMode::ClampToEdge => BitmapWrap::Clamp,
         WrappingMode::MirroredRepeat => BitmapWrap::Mirror,
         WrappingMode::Repeat => BitmapWrap::Repeat,

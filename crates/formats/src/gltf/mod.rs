@@ -341,6 +341,13 @@ impl Walk<'_> {
             let c = self
                 .materials
                 .get(&prim.material(), &mut self.desc.materials, &mut self.warnings)?;
+            if c.normal_mapped && prim.get(&Semantic::Tangents).is_some() {
+                self.warnings.push(format!(
+                    "{path}.attributes.TANGENT is not read: the normal map's tangent is dp/du from TEXCOORD_0 \
+                     (as glTF's sample viewer without tangents), which differs where the file's tangents are \
+                     mirrored (w = -1) or not along u"
+                ));
+            }
             self.desc.shapes.push(ShapeDesc {
                 geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
                     positions,
