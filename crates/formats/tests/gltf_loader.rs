@@ -550,3 +550,57 @@ fn gltf_texture_16384_is_refused_before_decoding_and_textures_are_counted() {
     let loaded = mcrender_formats::load_with(&path, &options).unwrap();
     assert_eq!(loaded.image_bytes, image_texture_bytes(2, 1));
 }
+
+/// The alpha test of the first shape, evaluated as a constant.
+fn constant_alpha(s: &LoadedScene, shape: usize) -> Option<f32> {
+    s.description.shapes[shape]
+        .alpha
+        .as_ref()
+        .map(|a| a.constant().expect("a constant alpha"))
+}
+
+#[test]
+fn alpha_modes_become_alpha_tests() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = triangle_doc(Some("tri.bin"));
+    doc["materials"] = json!([
+        {"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}},
+        {"alphaMode": "MASK", "alphaCutoff": 0.25, "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}},
+        {"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}},
+        {"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}
+    ]);
+    // A 2x1 RGBA texture: alpha 1 then 0.
+    let mut img = image::RgbaImage::new(2, 1);
+    img.put_pixel(0, 0, image::Rgba([255, 255, 255, 255]));
+    img.put_pixel(1, 0, image::Rgba([255, 255, 255, 0]));
+    img.save(dir.path().join("rgba.png")).unwrap();
+    doc["images"] = json!([{"uri": "rgba.png"}]);
+    doc["textures"] = json!([{"source": 0}]);
+    let prim = doc["meshes"][0]["primitives"][0].clone();
+    let prims: Vec<Value> = (0..5)
+        .map(|m| {
+            let mut p = prim.clone();
+            p["material"] = json!(m);
+            p
+        })
+        .collect();
+    doc["meshes"][0]["primitives"] = json!(prims);
+    let s = load(&write(dir.path(), &doc)).unwrap_or_else(|e| panic!("{e}"));
+    // MASK below the default cutoff 0.5: never present; above a cutoff of 0.25: no test.
+    assert!(constant_alpha(&s, 0).unwrap() <= 0.0);
+    assert_eq!(constant_alpha(&s, 1), None);
+    // BLEND: coverage; OPAQUE ignores the factor's alpha.
+    assert_eq!(constant_alpha(&s, 2), Some(0.25));
+    assert_eq!(constant_alpha(&s, 3), None);
+    // A MASK texture: present where the texel's alpha is 1 (>= 1), absent at 0 (<= 0).
+    let Some(Texture::Bitmap(b)) = &s.description.shapes[4].alpha else {
+        panic!("{:?}", s.description.shapes[4].alpha)
+    };
+    assert!(b.texels[0].r >= 1.0 && b.texels[1].r <= 0.0, "{:?}", b.texels);
+    assert!(s
+        .warnings
+        .join("\n")
+        .contains("materials[2].alphaMode BLEND is rendered as coverage"));
+    s.description.validate().unwrap();
+}

@@ -10,8 +10,10 @@
 //! when a mesh has no `TANGENT`s: the shading tangent is dp/du from `TEXCOORD_0`, made
 //! orthogonal to the shading normal, and the bitangent is `normal x tangent`; `TANGENT`
 //! attributes are not read (a warning says so where a normal map would use them).
-//! Ignored, with a warning: occlusion textures, a second texture coordinate set, alpha
-//! blending and masking. Each image is sized from its header and counted against the
+//! `alphaMode` `MASK` cuts out where the base colour's alpha (factor times texture,
+//! interpolated) is below `alphaCutoff`; `BLEND` becomes stochastic coverage, the surface
+//! present with probability alpha (pbrt's alpha, `scene::alpha`). Ignored, with a
+//! warning: occlusion textures, a second texture coordinate set. Each image is sized from its header and counted against the
 //! load's memory limit before it is decoded.
 
 use std::borrow::Cow;
@@ -28,8 +30,8 @@ use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, T
 use super::data::{error_text, Buffers};
 use crate::limits::{count_image_bytes, image_texture_bytes, LoadLimits};
 
-/// A converted material: its index and the emission of the shapes that use it.
-#[derive(Clone, Copy, Debug)]
+/// A converted material: its index, and the emission and alpha of the shapes that use it.
+#[derive(Clone, Debug)]
 pub struct Converted {
     /// Index into the scene's materials.
     pub material: MaterialId,
@@ -37,6 +39,24 @@ pub struct Converted {
     pub area_light: Option<AreaLightDesc>,
     /// The material has a normal map, whose tangent frame comes from the uvs.
     pub normal_mapped: bool,
+    /// The alpha test of the shapes that use it (`alphaMode` `MASK` or `BLEND`).
+    pub alpha: Option<FloatTexture>,
+}
+
+/// What [`Materials::convert`] makes of one glTF material.
+struct Surface {
+    desc: MaterialDesc,
+    area_light: Option<AreaLightDesc>,
+    alpha: Option<FloatTexture>,
+}
+
+/// A `MASK` alpha as a texel value of pbrt-style alpha: `1 + (alpha - cutoff) K` is `>= 1`
+/// (present) exactly where `alpha >= cutoff` and `<= 0` (absent) where `alpha <= cutoff -
+/// 1 / K`. The bitmap interpolates linearly, so the interpolated alpha is what meets the
+/// cutoff, as glTF asks; only a band of width `1 / K` in alpha is stochastic.
+fn mask_texel(alpha: f32, cutoff: f32) -> f32 {
+    const K: f32 = 1e6;
+    1.0 + (alpha - cutoff) * K
 }
 
 /// A texture as a material refers to it: the texture, its uv set and its
@@ -91,6 +111,8 @@ struct Image {
     width: u32,
     height: u32,
     texels: Vec<Rgb>,
+    /// The alpha channel, when the image has one.
+    alpha: Option<Vec<f32>>,
 }
 
 /// Converts the materials of one document, each once.
@@ -139,12 +161,16 @@ impl<'a> Materials<'a> {
         warnings: &mut Vec<String>,
     ) -> Result<Converted, String> {
         if let Some(c) = self.done.get(&m.index()) {
-            return Ok(*c);
+            return Ok(c.clone());
         }
         let path = m
             .index()
             .map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
-        let (desc, area_light) = self.convert(m, &path, warnings)?;
+        let Surface {
+            desc,
+            area_light,
+            alpha,
+        } = self.convert(m, &path, warnings)?;
         materials.push(desc);
         let normal_map = self.normal_map(m, &path, warnings)?;
         let normal_mapped = normal_map.is_some();
@@ -156,28 +182,30 @@ impl<'a> Materials<'a> {
             material: (materials.len() - 1) as MaterialId,
             area_light,
             normal_mapped,
+            alpha,
         };
-        self.done.insert(m.index(), c);
+        self.done.insert(m.index(), c.clone());
         Ok(c)
     }
 
-    fn convert(
-        &mut self,
-        m: &gltf::Material<'_>,
-        path: &str,
-        warnings: &mut Vec<String>,
-    ) -> Result<(MaterialDesc, Option<AreaLightDesc>), String> {
+    fn convert(&mut self, m: &gltf::Material<'_>, path: &str, warnings: &mut Vec<String>) -> Result<Surface, String> {
         if m.occlusion_texture().is_some() {
             warnings.push(format!(
                 "{path}.occlusionTexture is ignored (occlusion is computed, not painted)"
             ));
         }
-        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            warnings.push(format!("{path}.alphaMode {:?} is rendered as OPAQUE", m.alpha_mode()));
-        }
         let pbr = m.pbr_metallic_roughness();
-        let [r, g, b, _] = pbr.base_color_factor();
+        let [r, g, b, a] = pbr.base_color_factor();
         let factor = Rgb::new(r, g, b);
+        // Alpha as pbrt's alpha test reads it (see `mask_texel`); 1 is opaque.
+        let mode = m.alpha_mode();
+        let cutoff = m.alpha_cutoff().unwrap_or(0.5);
+        let test = |alpha: f32| match mode {
+            gltf::material::AlphaMode::Opaque => 1.0,
+            gltf::material::AlphaMode::Mask => mask_texel(alpha, cutoff),
+            gltf::material::AlphaMode::Blend => alpha,
+        };
+        let mut alpha: Option<FloatTexture> = None;
         let base_color: RgbTexture = match pbr.base_color_texture() {
             Some(info) => {
                 let info = TextureRef::from_info(&info);
@@ -187,10 +215,23 @@ impl<'a> Materials<'a> {
                     warnings,
                 )?;
                 let texels = img.texels.iter().map(|t| t.map(srgb_to_linear) * factor).collect();
+                if let (Some(texel_alpha), false) = (&img.alpha, mode == gltf::material::AlphaMode::Opaque) {
+                    let texels = texel_alpha.iter().map(|t| Rgb::splat(test(t * a))).collect();
+                    alpha = Some(bitmap(&info, &img, texels));
+                }
                 bitmap(&info, &img, texels)
             }
             None => factor.into(),
         };
+        let alpha = alpha.or_else(|| {
+            let constant = test(a);
+            (constant < 1.0).then(|| constant.into())
+        });
+        if mode == gltf::material::AlphaMode::Blend {
+            warnings.push(format!(
+                "{path}.alphaMode BLEND is rendered as coverage: the surface is hit with probability alpha"
+            ));
+        }
         let (metallic, roughness): (FloatTexture, FloatTexture) = match pbr.metallic_roughness_texture() {
             Some(info) => {
                 let info = TextureRef::from_info(&info);
@@ -243,28 +284,30 @@ impl<'a> Materials<'a> {
                 ));
             }
             if t.transmission_factor() >= 0.5 {
-                let alpha = pbr.roughness_factor().clamp(0.0, 1.0).powi(2);
+                let microfacet_alpha = pbr.roughness_factor().clamp(0.0, 1.0).powi(2);
                 let eta = m.ior().filter(|n| *n >= 1.0 && n.is_finite()).unwrap_or(1.5);
-                return Ok((
-                    MaterialDesc::Dielectric(DielectricMaterial {
+                return Ok(Surface {
+                    desc: MaterialDesc::Dielectric(DielectricMaterial {
                         eta,
-                        u_roughness: alpha.into(),
-                        v_roughness: alpha.into(),
+                        u_roughness: microfacet_alpha.into(),
+                        v_roughness: microfacet_alpha.into(),
                         remap_roughness: false,
                         microfacet: Default::default(),
                     }),
                     area_light,
-                ));
+                    alpha,
+                });
             }
         }
-        Ok((
-            MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
+        Ok(Surface {
+            desc: MaterialDesc::MetallicRoughness(MetallicRoughnessMaterial {
                 base_color,
                 metallic,
                 roughness,
             }),
             area_light,
-        ))
+            alpha,
+        })
     }
 
     /// The normal map of `m`: its texels (linear, as stored) with `normal = 2 c - 1`
@@ -345,7 +388,7 @@ impl<'a> Materials<'a> {
     }
 }
 
-/// Texels of `data` as RGB in [0, 1] (grey and grey-alpha replicated; alpha dropped).
+/// Texels of `data` as RGB in [0, 1] (grey replicated), and the alpha channel apart.
 fn decode(data: &gltf::image::Data) -> Option<Image> {
     use gltf::image::Format;
     let (channels, bytes) = match data.format {
@@ -382,10 +425,17 @@ fn decode(data: &gltf::image::Data) -> Option<Image> {
             }
         })
         .collect();
+    let alpha = matches!(channels, 2 | 4).then(|| {
+        data.pixels
+            .chunks_exact(channels * bytes)
+            .map(|px| value(&px[(channels - 1) * bytes..channels * bytes]))
+            .collect()
+    });
     Some(Image {
         width: data.width,
         height: data.height,
         texels,
+        alpha,
     })
 }
 

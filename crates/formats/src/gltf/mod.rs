@@ -358,7 +358,7 @@ impl Walk<'_> {
                 material: c.material,
                 area_light: c.area_light,
                 flip_normals: flips,
-                alpha: None,
+                alpha: c.alpha,
             });
         }
         Ok(())
