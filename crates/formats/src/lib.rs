@@ -7,7 +7,8 @@
 //! * [`mitsuba`]: Mitsuba 3 XML scenes ([`mitsuba::load_file`]);
 //! * [`obj`]: Wavefront OBJ meshes; [`obj_scene`]: an OBJ file as a whole scene;
 //! * [`gltf`]: glTF 2.0 scenes (`.gltf`, `.glb`);
-//! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`);
+//! * [`ply`]: PLY triangle meshes (used by pbrt's `plymesh`); [`serialized`]: Mitsuba's
+//!   compressed meshes;
 //! * shared by the loaders: [`LoadedScene`] (what each returns), [`spectra`] (spectra to
 //!   RGB), [`transform`] (transform matrices), [`image_io`], [`limits`], [`source`];
 //! * [`image_io`]: [`image_io::write_image`] (PNG or EXR by extension, written atomically),
@@ -26,6 +27,7 @@ pub mod obj;
 pub mod obj_scene;
 pub mod pbrt;
 pub mod ply;
+pub mod serialized;
 pub mod source;
 pub mod spectra;
 pub mod transform;

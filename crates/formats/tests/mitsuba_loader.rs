@@ -383,3 +383,53 @@ fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
     let e = err("<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture></bsdf>");
     assert!(e.message.contains("nested bsdf"), "{e}");
 }
+
+#[test]
+fn serialized_meshes_load_by_shape_index_and_bad_ones_are_errors() {
+    use mcrender_core::math::{Vec2, Vec3};
+    use mcrender_core::scene::{GeometryDesc, TriangleMeshDesc};
+    use mcrender_formats::serialized::write_serialized;
+    let tri = |x: f32| TriangleMeshDesc {
+        positions: vec![
+            Vec3::new(x, 0.0, 0.0),
+            Vec3::new(x + 1.0, 0.0, 0.0),
+            Vec3::new(x, 1.0, 0.0),
+        ],
+        indices: vec![0, 1, 2],
+        normals: None,
+        uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]),
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("m.serialized"),
+        write_serialized(&[("a", &tri(0.0)), ("b", &tri(5.0))]),
+    )
+    .unwrap();
+    let body = r#"<shape type="serialized"><string name="filename" value="m.serialized"/><integer name="shape_index" value="1"/>
+        <transform name="to_world"><translate x="0" y="0" z="2"/></transform></shape>"#;
+    let xml = write(dir.path(), "s.xml", &scene(body));
+    let s = load(&xml).unwrap_or_else(|e| panic!("{e}"));
+    let GeometryDesc::TriangleMesh(m) = &s.description.shapes[0].geometry else {
+        panic!()
+    };
+    // The second mesh, moved to z = 2, with v flipped to mcrender's convention.
+    assert_eq!(m.positions[0], Vec3::new(5.0, 0.0, 2.0));
+    assert_eq!(m.uvs.as_ref().unwrap()[2], Vec2::new(0.0, 0.0));
+    let bad = |index: &str, file: &str| {
+        let body = format!(
+            r#"<shape type="serialized"><string name="filename" value="{file}"/><integer name="shape_index" value="{index}"/></shape>"#
+        );
+        load(&write(dir.path(), "bad.xml", &scene(&body)))
+            .expect_err("should fail")
+            .to_string()
+    };
+    let e = bad("7", "m.serialized");
+    assert!(
+        e.contains("bad.xml:2:") && e.contains("shape_index 7, but the file holds 2 meshes"),
+        "{e}"
+    );
+    std::fs::write(dir.path().join("junk.serialized"), b"not a mesh at all").unwrap();
+    let e = bad("0", "junk.serialized");
+    assert!(e.contains("expected the serialized format tag"), "{e}");
+    assert!(bad("0", "missing.serialized").contains("cannot read"));
+}

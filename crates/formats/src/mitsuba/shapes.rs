@@ -154,6 +154,27 @@ impl Builder {
                 }
                 GeometryDesc::TriangleMesh(to_world_mesh(mesh, &transform))
             }
+            "serialized" => {
+                let (file, floc) = p
+                    .string("filename")?
+                    .ok_or_else(|| SceneError::syntax(&el.loc, format!("{} needs a \"filename\"", el.describe())))?;
+                let shape_index = p.int("shape_index", 0)?;
+                let shape_index = u32::try_from(shape_index).map_err(|_| {
+                    SceneError::syntax(&el.loc, format!("shape_index {shape_index}: expected 0 or more"))
+                })?;
+                let bytes = self.reader.files().read(&self.resolve(&file)).map_err(|e| {
+                    SceneError::io(&floc, format!("cannot read {}: {}", quoted(&file), io_error_text(&e)))
+                })?;
+                let mut mesh = crate::serialized::read_serialized(&bytes, shape_index, self.limits.max_memory)
+                    .map_err(|e| SceneError::io(&floc, format!("cannot read serialized mesh {}: {e}", quoted(&file))))?
+                    .mesh;
+                // Stored as Mitsuba holds uvs, like its PLY meshes: v flipped to mcrender's.
+                flip_uv_v(&mut mesh);
+                if p.bool("face_normals", false)? {
+                    mesh.normals = None;
+                }
+                GeometryDesc::TriangleMesh(to_world_mesh(mesh, &transform))
+            }
             "rectangle" => GeometryDesc::TriangleMesh(to_world_mesh(rectangle(), &transform)),
             "cube" => GeometryDesc::TriangleMesh(to_world_mesh(cube(), &transform)),
             "sphere" => {
