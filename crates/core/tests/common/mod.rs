@@ -3,7 +3,7 @@
 #![allow(dead_code, missing_docs)]
 
 use mcrender_core::color::Rgb;
-use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
+use mcrender_core::math::{Mat4, Transform, Vec2, Vec3, PI};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::*;
 
@@ -226,4 +226,91 @@ pub fn square_light_irradiance(s: f32, h: f32, l: f32) -> f32 {
         (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f32::consts::PI)
     };
     std::f32::consts::PI * l * 4.0 * corner(s, s, h)
+}
+
+/// A closed sphere of `radius` and albedo `albedo` emitting `le` inwards, the camera at its
+/// centre: every point sees L from everywhere, so L = le + albedo L, L = le / (1 - albedo)
+/// (le (1 - albedo^(D+1)) / (1 - albedo) up to depth D).
+pub fn emissive_sphere(radius: f32, albedo: Rgb, le: Rgb) -> SceneDescription {
+    let emission = AreaLightDesc {
+        radiance: le,
+        two_sided: false,
+        power: None,
+    };
+    inside_sphere_scene(radius, albedo, Some(emission), true)
+}
+
+/// A diffuse sphere of radius 1 and albedo 1/2 with a point light of intensity
+/// `intensity` at its centre (where the camera is). With intensity pi the direct radiance
+/// is (a/pi)(I/r^2) = 1/2, and depth k carries 2^-k: L = 1 - 2^-D up to depth D, 1 in all.
+pub fn point_lit_sphere(intensity: f32) -> SceneDescription {
+    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
+    d.lights.push(LightDesc::Point {
+        position: Vec3::ZERO,
+        intensity: Rgb::splat(intensity),
+    });
+    d
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only (max depth 1), inside a sphere of radius 50 emitting `l` inwards (a uniform
+/// sky: the irradiance is pi l); and its radiance, rho l.
+pub fn receiver_under_sky(l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = emissive_sphere(50.0, Rgb::BLACK, Rgb::splat(l));
+    add_receiver(&mut d, rho);
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho * l))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a square light of half-side `s` at height `h` emitting `l`; and its
+/// radiance, rho / pi E with E from [`square_light_irradiance`].
+pub fn receiver_under_square_light(s: f32, h: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho / PI * square_light_irradiance(s, h, l)))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a sphere light of radius `r` emitting `l` at distance `dist` above it:
+/// E = pi l (r/dist)^2, so the radiance is rho l (r/dist)^2.
+pub fn receiver_under_sphere_light(r: f32, dist: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho * l * (r / dist) * (r / dist)))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a disk light of radius `r` at height `h` on its axis emitting `l`
+/// downwards: E = pi l r^2 / (r^2 + h^2), so the radiance is rho l r^2 / (r^2 + h^2).
+pub fn receiver_under_disk_light(r: f32, h: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_disk_light(&mut d, r, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho / PI * (PI * l * r * r / (r * r + h * h))))
+}
+
+/// Assert that an estimate `(mean, standard error)` per channel is `expected` within 4
+/// standard errors (and a relative 1e-5 for rounding).
+pub fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {
+    for c in 0..3 {
+        let e = f64::from(expected[c]);
+        let tol = 4.0 * se[c] + 1e-5 * e.abs().max(1e-3);
+        eprintln!("{label} channel {c}: {:.5} vs {e:.5} (se {:.2e})", mean[c], se[c]);
+        assert!(
+            (mean[c] - e).abs() <= tol,
+            "{label}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
+            mean[c],
+            se[c]
+        );
+    }
 }
