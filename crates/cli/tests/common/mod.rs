@@ -3,6 +3,8 @@
 #![allow(dead_code)]
 
 pub mod checkpoint;
+#[path = "../../../formats/tests/common/shared_scenes.rs"]
+pub mod shared_scenes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
