@@ -80,18 +80,24 @@ pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
 
 /// A square of half-side `s` at height `h` above the origin, emitting `l` downwards.
 pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
+    let square = GeometryDesc::TriangleMesh(TriangleMeshDesc {
+        positions: vec![
+            Vec3::new(-s, h, -s),
+            Vec3::new(s, h, -s),
+            Vec3::new(s, h, s),
+            Vec3::new(-s, h, s),
+        ],
+        indices: vec![0, 1, 2, 0, 2, 3],
+        normals: None,
+        uvs: None,
+    });
+    add_emitter(d, square, l);
+}
+
+/// A shape of `geometry` (material 0, one-sided) emitting `l`.
+pub fn add_emitter(d: &mut SceneDescription, geometry: GeometryDesc, l: Rgb) {
     d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
-            positions: vec![
-                Vec3::new(-s, h, -s),
-                Vec3::new(s, h, -s),
-                Vec3::new(s, h, s),
-                Vec3::new(-s, h, s),
-            ],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            normals: None,
-            uvs: None,
-        }),
+        geometry,
         material: 0,
         area_light: Some(AreaLightDesc {
             radiance: l,
@@ -105,45 +111,24 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
 
 /// A sphere light of radius `r` at `centre`.
 pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) {
-    d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::full_sphere(
-            1.0,
-            Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r))).unwrap(),
-        ),
-        material: 0,
-        area_light: Some(AreaLightDesc {
-            radiance: l,
-            two_sided: false,
-            power: None,
-        }),
-        flip_normals: false,
-        alpha: None,
-    });
+    let world_from_object = Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r))).unwrap();
+    add_emitter(d, GeometryDesc::full_sphere(1.0, world_from_object), l);
 }
 
 /// A disk of radius `r` at height `h` above the origin, emitting `l` downwards: object
 /// space `z` is mapped to world `-y` by a rotation, as a pbrt scene would place it.
 pub fn add_disk_light(d: &mut SceneDescription, r: f32, h: f32, l: Rgb) {
-    d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::Disk {
-            height: 0.0,
-            radius: r,
-            inner_radius: 0.0,
-            phi_max: 2.0 * std::f32::consts::PI,
-            world_from_object: Transform::new(
-                Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2),
-            )
-            .unwrap(),
-        },
-        material: 0,
-        area_light: Some(AreaLightDesc {
-            radiance: l,
-            two_sided: false,
-            power: None,
-        }),
-        flip_normals: false,
-        alpha: None,
-    });
+    let disk = GeometryDesc::Disk {
+        height: 0.0,
+        radius: r,
+        inner_radius: 0.0,
+        phi_max: 2.0 * std::f32::consts::PI,
+        world_from_object: Transform::new(
+            Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2),
+        )
+        .unwrap(),
+    };
+    add_emitter(d, disk, l);
 }
 
 /// A camera low beside the receiver, looking at its centre with a tiny field of view, so
