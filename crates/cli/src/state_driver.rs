@@ -22,7 +22,7 @@ use mcrender_core::scene::{Scene, SceneDescription};
 
 use crate::checkpoint::{self, IntegratorState, Resume};
 use crate::interrupt;
-use crate::progressive::{self, Plan, DEFAULT_EVERY};
+use crate::progressive::{self, DEFAULT_EVERY};
 use crate::render_cmd::{progress_bar, write_outputs, RenderArgs};
 
 /// An integrator whose render is a state advanced in steps, checkpointed between them.
@@ -95,14 +95,9 @@ pub fn render<R: StateRender>(
     let (w, h) = (desc.film.width, desc.film.height);
     let spp = desc.sampler.samples_per_pixel;
     let total = r.total();
-    let Plan {
-        explicit,
-        path: ck_path,
-        fingerprint,
-        invocation,
-        checkpoint,
-    } = progressive::plan(args, resume, desc, output)?;
-    let mut state = match checkpoint {
+    let plan = progressive::plan(args, resume, desc, output)?;
+    let (explicit, ck_path) = (&plan.explicit, &plan.path);
+    let mut state = match plan.checkpoint {
         None => r.new_state(w, h),
         Some(ck) => match ck.integrator_state {
             Some(s) if s.name == R::NAME => r
@@ -136,7 +131,14 @@ pub fn render<R: StateRender>(
             name: R::NAME.into(),
             bytes: r.state_bytes(state),
         };
-        checkpoint::write(path, &fingerprint, &invocation, spp, &r.film(state), Some(&bytes))
+        checkpoint::write(
+            path,
+            &plan.fingerprint,
+            &plan.invocation,
+            spp,
+            &r.film(state),
+            Some(&bytes),
+        )
     };
     let first = r.done(&state);
     let start = Instant::now();
@@ -144,7 +146,7 @@ pub fn render<R: StateRender>(
     let mut trace = pool.install(|| r.start(scene, &mut state, &signals.cancel));
     while !r.is_finished(&state) && signals.received().is_none() {
         // A little early rather than a step late.
-        if let Some(path) = &explicit {
+        if let Some(path) = explicit {
             if last_checkpoint.elapsed() >= every.mul_f64(0.9) {
                 save(path, r, &state)?;
                 last_checkpoint = Instant::now();
@@ -169,7 +171,7 @@ pub fn render<R: StateRender>(
                 (keys[1].as_str(), requested.as_str()),
             ];
             progressive::write_partial(&r.film(&state), output, args.variance_output.as_deref(), &meta)?;
-            save(&ck_path, r, &state)?;
+            save(ck_path, r, &state)?;
             eprintln!(
                 "mcrender: {by} after {done} of {total} {label} {units}: wrote \"{}\" ({done} {units}) and checkpoint \"{}\"; \
                  continue with: mcrender render --resume {}",
