@@ -20,6 +20,7 @@ mod progressive;
 mod render_cmd;
 mod scene_args;
 mod sppm_render;
+mod state_driver;
 mod study;
 
 use std::process::ExitCode;

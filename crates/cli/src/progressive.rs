@@ -150,10 +150,7 @@ pub fn render(
     };
     let (mut last_checkpoint, mut seconds_per_sample) = (Instant::now(), None::<f64>);
     while done < spp {
-        let until_checkpoint = explicit
-            .as_ref()
-            .map(|_| every.saturating_sub(last_checkpoint.elapsed()));
-        let target = until_checkpoint.map_or(MAX_WAVE, |t| t.min(MAX_WAVE)).as_secs_f64();
+        let target = wave_seconds(explicit.is_some(), every, last_checkpoint);
         let n = seconds_per_sample.map_or(1, |t| ((target / t.max(1e-9)).floor() as u32).clamp(1, spp - done));
         let base = pixels * u64::from(done);
         let watch = Watch {
@@ -202,6 +199,17 @@ pub fn render(
     }
     remove_finished(explicit.as_deref());
     Ok(out)
+}
+
+/// How long the next wave (or step) should take, in seconds: until the next checkpoint,
+/// `every` after `last_checkpoint`, when `checkpointing`, and at most [`MAX_WAVE`].
+pub fn wave_seconds(checkpointing: bool, every: Duration, last_checkpoint: Instant) -> f64 {
+    let wave = if checkpointing {
+        every.saturating_sub(last_checkpoint.elapsed()).min(MAX_WAVE)
+    } else {
+        MAX_WAVE
+    };
+    wave.as_secs_f64()
 }
 
 /// A finished render's checkpoint has served its purpose: remove it.

@@ -12,8 +12,10 @@ use mcrender_core::scene::{IntegratorKind, Scene};
 use mcrender_formats::image_io::{write_images, ImageRgb};
 
 use crate::builtin;
+use crate::mlt_render::MltRender;
 use crate::preflight;
 use crate::scene_args::SceneArgs;
+use crate::sppm_render::SppmRender;
 
 /// Options of `mcrender render`; flags override what the scene file says.
 #[derive(Args, Debug, Default, Clone)]
@@ -83,10 +85,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = Scene::build(&desc).context("the scene cannot be rendered")?;
 
     if desc.integrator.kind == IntegratorKind::Sppm {
-        return crate::sppm_render::render(args, resume, &scene, &desc, &output);
+        let sppm = SppmRender::new(&scene);
+        return crate::state_driver::render(sppm, args, resume, &scene, &desc, &output);
     }
     if desc.integrator.kind == IntegratorKind::Mlt {
-        return crate::mlt_render::render(args, resume, &scene, &desc, &output);
+        let mlt = MltRender::new(&scene, desc.film.width, desc.film.height);
+        return crate::state_driver::render(mlt, args, resume, &scene, &desc, &output);
     }
     let (w, h, spp) = (desc.film.width, desc.film.height, desc.sampler.samples_per_pixel);
     let out = crate::progressive::render(args, resume, &scene, &desc, &output)?;

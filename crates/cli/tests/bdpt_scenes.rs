@@ -1,12 +1,14 @@
 //! Bidirectional path tracing on the shared scenes: agreement with the path tracer per
 //! depth on the Cornell box, and Veach's bidirectional room against Tungsten's reference
-//! with the efficiency gain BDPT exists for. Skipped (loudly) when `MCRENDER_SCENES` is
-//! unset.
+//! with the efficiency gain BDPT exists for. They fail when the shared scenes cannot be
+//! found, unless `MCRENDER_SKIP_SHARED_SCENES` is set (then a visible `SKIPPED` line).
 //!
 //! BDPT's light-tracing strategies splat onto other pixels, so a pixel's own sample spread
 //! does not measure its noise. Every statistic here comes instead from `K` independent
 //! renders (seeds 1..=K): the per-pixel variance of one render is the spread of the K
 //! values, and the variance of their mean is that over K.
+
+mod common;
 
 use std::path::PathBuf;
 
@@ -17,17 +19,9 @@ use mcrender_core::scene::{IntegratorKind, Scene, SceneDescription};
 use mcrender_formats::image_io::read_exr;
 use mcrender_formats::pbrt::load_file;
 
-const BLOCK: u32 = 8;
+use common::shared_scenes::shared_scenes_dir;
 
-fn scenes_dir() -> Option<PathBuf> {
-    match std::env::var_os("MCRENDER_SCENES") {
-        Some(d) => Some(PathBuf::from(d)),
-        None => {
-            eprintln!("SKIPPED: MCRENDER_SCENES is not set");
-            None
-        }
-    }
-}
+const BLOCK: u32 = 8;
 
 /// K independent renders: their mean image, the per-pixel variance of that mean, and the
 /// rays (closest-hit plus shadow) one render traced on average.
@@ -122,7 +116,9 @@ fn with_integrator(
 /// 4.5 with probability about 1e-4), and the image means within 4.
 #[test]
 fn cornell_box_agrees_with_the_path_tracer_per_depth() {
-    let Some(dir) = scenes_dir() else { return };
+    let Some(dir) = shared_scenes_dir("cornell_box_agrees_with_the_path_tracer_per_depth") else {
+        return;
+    };
     let mut desc = load_file(&dir.join("cornell-box/scene-v4.pbrt"))
         .expect("loads")
         .description;
@@ -311,7 +307,9 @@ fn rel_variance(r: &Renders, reference: &[Rgb]) -> f64 {
 /// variance x rays: BDPT 4.46e-2 x 1.72e6, path 3.16 x 9.34e5, an efficiency ratio of 38.
 #[test]
 fn veach_bidir_matches_tungsten_and_beats_the_path_tracer() {
-    let Some(dir) = scenes_dir() else { return };
+    let Some(dir) = shared_scenes_dir("veach_bidir_matches_tungsten_and_beats_the_path_tracer") else {
+        return;
+    };
     let loaded = load_file(&dir.join("veach-bidir/scene-v4.pbrt")).expect("loads");
     assert_eq!(loaded.description.integrator.kind, IntegratorKind::Bdpt);
     assert_eq!(loaded.description.integrator.max_depth, 7);

@@ -5,31 +5,35 @@
 
 mod common;
 
-use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::Child;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use common::{mcrender, scene, stderr};
+use common::checkpoint::{
+    assert_continued, assert_partial, assert_resumes_to, exr_count, interrupt, kill, kill_at_checkpoint, rendered,
+    resume, run, spawn, temp_files, wait_for, wait_for_progress,
+};
+use common::{scene, stderr};
 
 const SPP: &str = "300";
 const RES: &str = "24x24";
+/// The film size of [`RES`].
+const FILM: (u32, u32) = (24, 24);
+/// Checkpoints to `c.ckpt` every 50 ms.
+const EVERY_50MS: [&str; 4] = ["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"];
 
+/// `mcrender render` of the scene `file` at [`SPP`] and [`RES`] to `out`.
+fn spp_args(file: &str, out: &str) -> Vec<String> {
+    ["render", file, "--spp", SPP, "--resolution", RES, "-o", out, "-q"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+}
+
+/// `mcrender render` of the repository's Cornell box at [`SPP`] and [`RES`] to `out`.
 fn base_args(out: &str) -> Vec<String> {
-    [
-        &scene("cornell-box/scene-v4.pbrt"),
-        "--spp",
-        SPP,
-        "--resolution",
-        RES,
-        "-o",
-        out,
-        "-q",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect()
+    spp_args(&scene("cornell-box/scene-v4.pbrt"), out)
 }
 
 /// The uninterrupted render's bytes (rendered once for all tests).
@@ -37,132 +41,47 @@ fn reference() -> &'static [u8] {
     static REF: OnceLock<Vec<u8>> = OnceLock::new();
     REF.get_or_init(|| {
         let dir = tempfile::tempdir().unwrap();
-        let mut a = vec!["render".to_string()];
-        a.extend(base_args("ref.exr"));
-        let a: Vec<&str> = a.iter().map(String::as_str).collect();
-        let o = mcrender(&a, dir.path());
-        assert!(o.status.success(), "{}", stderr(&o));
-        std::fs::read(dir.path().join("ref.exr")).unwrap()
+        rendered(dir.path(), &base_args("ref.exr"), "ref.exr")
     })
-}
-
-fn spawn(dir: &Path, extra: &[&str]) -> Child {
-    let mut args = vec!["render".to_string()];
-    args.extend(base_args("out.exr"));
-    args.extend(extra.iter().map(|s| s.to_string()));
-    Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(&args)
-        .current_dir(dir)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("mcrender starts")
-}
-
-fn wait_for(path: &Path, child: &mut Child) {
-    let start = Instant::now();
-    while !path.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the render ended before its first checkpoint"
-        );
-        assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "no checkpoint after 2 minutes"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
-
-/// Wait for a checkpoint at `path` that records some progress (`samples_done` > 0 in its
-/// header: a render of its own driver may save one before its first sample, e.g. after
-/// MLT's bootstrap).
-fn wait_for_progress(path: &Path, child: &mut Child) {
-    let start = Instant::now();
-    loop {
-        wait_for(path, child);
-        let bytes = std::fs::read(path).unwrap_or_default();
-        let text = String::from_utf8_lossy(&bytes[..bytes.len().min(1 << 16)]).into_owned();
-        let done: u64 = text
-            .split("\"samples_done\":")
-            .nth(1)
-            .and_then(|rest| rest.split(|c: char| !c.is_ascii_digit()).next())
-            .and_then(|n| n.parse().ok())
-            .unwrap_or(0);
-        if done > 0 {
-            return;
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "no progress checkpointed after 2 minutes"
-        );
-        std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
-fn signal(child: &Child, sig: &str) {
-    let ok = Command::new("kill")
-        .args([sig, &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(ok.success());
-}
-
-/// Names in `dir` that look like temporary files.
-fn temp_files(dir: &Path) -> Vec<String> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with('.') || n.contains("tmp"))
-        .collect()
-}
-
-fn resume(dir: &Path, ckpt: &str, extra: &[&str]) -> std::process::Output {
-    let mut a = vec!["render", "--resume", ckpt, "-q"];
-    a.extend(extra);
-    mcrender(&a, dir)
 }
 
 #[test]
 fn sigkill_after_the_first_checkpoint_resumes_to_the_same_bytes() {
-    let reference = reference();
     let dir = tempfile::tempdir().unwrap();
-    let ckpt = dir.path().join("c.ckpt");
-    let mut child = spawn(
-        dir.path(),
-        &[
-            "--checkpoint",
-            "c.ckpt",
-            "--checkpoint-every",
-            "100ms",
-            "--threads",
-            "2",
-        ],
-    );
-    wait_for(&ckpt, &mut child);
-    child.kill().unwrap(); // SIGKILL
-    let status = child.wait().unwrap();
-    assert_eq!(status.signal(), Some(9), "{status:?}");
-    assert!(!dir.path().join("out.exr").exists());
-    // A different thread count on resume does not change the image.
-    let o = resume(dir.path(), "c.ckpt", &["--threads", "1"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(std::fs::read(dir.path().join("out.exr")).unwrap(), reference);
+    killed_and_resumed(dir.path(), &base_args("out.exr"), wait_for, reference());
+}
+
+/// Render `args` in `dir` checkpointing every 100 ms on 2 threads, SIGKILL it once `wait`
+/// saw its checkpoint, and check that it left no image, that the resume on 1 thread (a
+/// different thread count does not change the image) is `reference` byte for byte,
+/// removes its checkpoint and leaves no temporary file. Returns the resume's stderr.
+fn killed_and_resumed(dir: &Path, args: &[String], wait: fn(&Path, &mut Child), reference: &[u8]) -> String {
+    let ckpt = dir.join("c.ckpt");
+    let every = [
+        "--checkpoint",
+        "c.ckpt",
+        "--checkpoint-every",
+        "100ms",
+        "--threads",
+        "2",
+    ];
+    let mut child = spawn(dir, args, &every);
+    wait(&ckpt, &mut child);
+    kill(child);
+    assert!(!dir.join("out.exr").exists());
+    let err = assert_resumes_to(dir, "c.ckpt", &["--threads", "1"], reference);
     assert!(!ckpt.exists(), "a finished render removes its checkpoint");
-    assert_eq!(temp_files(dir.path()), Vec::<String>::new());
+    assert_eq!(temp_files(dir), Vec::<String>::new());
+    err
 }
 
 fn interrupted_render(sig: &str, code: i32) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    let mut child = spawn(dir.path(), &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
+    let mut child = spawn(dir.path(), &base_args("out.exr"), &EVERY_50MS);
     // The first checkpoint shows the render is under way with its handlers installed.
     wait_for(&dir.path().join("c.ckpt"), &mut child);
-    signal(&child, sig);
-    let o = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(code), "{err}");
+    let err = interrupt(child, sig, code, dir.path());
     assert!(err.contains("samples per pixel") && err.contains("--resume"), "{err}");
-    assert_eq!(temp_files(dir.path()), Vec::<String>::new());
     dir
 }
 
@@ -171,36 +90,21 @@ fn sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     let reference = reference();
     let dir = interrupted_render("-INT", 130);
     let out = dir.path().join("out.exr");
-    let meta = mcrender_formats::image_io::read_exr_metadata(&out).unwrap();
-    let spp: u32 = meta
-        .iter()
-        .find(|(k, _)| k == "mcrender.samplesPerPixel")
-        .map(|(_, v)| v.parse().unwrap())
-        .expect("sample count in the EXR header");
-    assert!(spp < 300, "{meta:?}");
-    assert!(meta.contains(&("mcrender.samplesRequested".into(), SPP.into())));
-    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
-    assert_eq!((partial.width, partial.height), (24, 24));
-    if spp > 0 {
-        assert!(
-            partial.pixels.iter().any(|p| p.r > 0.0),
-            "the partial image has content"
-        );
-    }
-    let o = resume(dir.path(), "c.ckpt", &[]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(std::fs::read(&out).unwrap(), reference);
+    let spp = exr_count(&out, "mcrender.samplesPerPixel");
+    let requested: u64 = SPP.parse().unwrap();
+    assert!(spp < requested, "{spp} samples per pixel");
+    assert_eq!(exr_count(&out, "mcrender.samplesRequested"), requested);
+    assert_partial(&out, FILM, spp > 0);
+    assert_resumes_to(dir.path(), "c.ckpt", &[], reference);
 }
 
 #[test]
 fn sigterm_exits_143_and_running_the_same_command_again_continues() {
     let reference = reference();
     let dir = interrupted_render("-TERM", 143);
-    let o = spawn(dir.path(), &["--checkpoint", "c.ckpt"])
-        .wait_with_output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("continuing the render"));
+    let o = run(dir.path(), &base_args("out.exr"), &["--checkpoint", "c.ckpt"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("continuing the render"));
     assert_eq!(std::fs::read(dir.path().join("out.exr")).unwrap(), reference);
 }
 
@@ -210,26 +114,8 @@ fn checkpointed_copy() -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
     let scene_path = dir.path().join("scene.pbrt");
     std::fs::copy(scene("cornell-box/scene-v4.pbrt"), &scene_path).unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args([
-            "render",
-            "scene.pbrt",
-            "--spp",
-            SPP,
-            "--resolution",
-            RES,
-            "-o",
-            "out.exr",
-            "-q",
-        ])
-        .args(["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"])
-        .current_dir(dir.path())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    wait_for(&dir.path().join("c.ckpt"), &mut child);
-    child.kill().unwrap();
-    child.wait().unwrap();
+    let child = spawn(dir.path(), &spp_args("scene.pbrt", "out.exr"), &EVERY_50MS);
+    kill_at_checkpoint(child, &dir.path().join("c.ckpt"));
     std::fs::write(dir.path().join("out.exr"), b"sentinel").unwrap();
     (dir, scene_path)
 }
@@ -265,39 +151,17 @@ fn mismatched_truncated_and_foreign_checkpoints_are_refused() {
     std::fs::write(d.join("c.ckpt"), &good).unwrap();
 
     // Another scene's checkpoint under this render's --checkpoint name.
-    let other = [
-        "render",
-        "scene.pbrt",
-        "--spp",
-        SPP,
-        "--resolution",
-        RES,
-        "-o",
-        "out.exr",
-        "-q",
-        "--seed",
-        "99",
-        "--checkpoint",
-        "c.ckpt",
-    ];
-    assert_refused(&mcrender(&other, d), d, &good, "other settings");
+    let other = run(
+        d,
+        &spp_args("scene.pbrt", "out.exr"),
+        &["--seed", "99", "--checkpoint", "c.ckpt"],
+    );
+    assert_refused(&other, d, &good, "other settings");
     let text = std::fs::read_to_string(&scene_path).unwrap();
     let text = text.replacen("WorldBegin", "WorldBegin\nAttributeBegin AttributeEnd", 1);
     std::fs::write(d.join("foreign.pbrt"), text).unwrap();
-    let foreign = [
-        "render",
-        "foreign.pbrt",
-        "--spp",
-        SPP,
-        "--resolution",
-        RES,
-        "-o",
-        "out.exr",
-        "-q",
-        "--checkpoint",
-        "c.ckpt",
-    ];
-    assert_refused(&mcrender(&foreign, d), d, &good, "another scene");
+    let foreign = run(d, &spp_args("foreign.pbrt", "out.exr"), &["--checkpoint", "c.ckpt"]);
+    assert_refused(&foreign, d, &good, "another scene");
 
     // Wrong fingerprint: the scene changed since the checkpoint.
     let mut text = std::fs::read_to_string(&scene_path).unwrap();
@@ -317,40 +181,17 @@ fn mismatched_truncated_and_foreign_checkpoints_are_refused() {
 fn a_splatting_integrator_resumes_to_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let args = |out: &'static str| {
-        vec![
-            "render".to_string(),
-            scene("cornell-box/scene-v4.pbrt"),
-            "--integrator".into(),
-            "lightpath".into(),
-            "--spp".into(),
-            "200".into(),
-            "--resolution".into(),
-            RES.into(),
-            "-o".into(),
-            out.into(),
-            "-q".into(),
-        ]
+    let cornell = scene("cornell-box/scene-v4.pbrt");
+    let args = |out: &str| -> Vec<String> {
+        let a = ["render", &cornell, "--integrator", "lightpath", "--spp", "200"];
+        a.iter()
+            .chain(&["--resolution", RES, "-o", out, "-q"])
+            .map(|s| s.to_string())
+            .collect()
     };
-    let r = args("ref.exr");
-    let o = mcrender(&r.iter().map(String::as_str).collect::<Vec<_>>(), d);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(args("out.exr"))
-        .args(["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"])
-        .current_dir(d)
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    wait_for(&d.join("c.ckpt"), &mut child);
-    child.kill().unwrap();
-    child.wait().unwrap();
-    let o = resume(d, "c.ckpt", &["--threads", "1"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(
-        std::fs::read(d.join("out.exr")).unwrap(),
-        std::fs::read(d.join("ref.exr")).unwrap()
-    );
+    let reference = rendered(d, &args("ref.exr"), "ref.exr");
+    kill_at_checkpoint(spawn(d, &args("out.exr"), &EVERY_50MS), &d.join("c.ckpt"));
+    assert_resumes_to(d, "c.ckpt", &["--threads", "1"], &reference);
 }
 
 /// The Cornell box rendered by SPPM, long enough (100 iterations) to be caught mid-render.
@@ -371,30 +212,9 @@ fn file_args(file: &str, out: &str) -> Vec<String> {
         .collect()
 }
 
-fn spawn_file(dir: &Path, file: &str, extra: &[&str]) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_mcrender"))
-        .args(file_args(file, "out.exr"))
-        .args(extra)
-        .current_dir(dir)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("mcrender starts")
-}
-
+/// The uninterrupted render of the scene file `file` in `dir` (written to `ref.exr`).
 fn file_reference(dir: &Path, file: &str) -> Vec<u8> {
-    let a = file_args(file, "ref.exr");
-    let o = mcrender(&a.iter().map(String::as_str).collect::<Vec<_>>(), dir);
-    assert!(o.status.success(), "{}", stderr(&o));
-    std::fs::read(dir.join("ref.exr")).unwrap()
-}
-
-fn spawn_sppm(dir: &Path, extra: &[&str]) -> Child {
-    spawn_file(dir, "sppm.pbrt", extra)
-}
-
-fn sppm_reference(dir: &Path) -> Vec<u8> {
-    file_reference(dir, "sppm.pbrt")
+    rendered(dir, &file_args(file, "ref.exr"), "ref.exr")
 }
 
 /// SPPM's per-pixel state (radii, photon counts, flux, direct light) and its iteration
@@ -405,28 +225,9 @@ fn sppm_killed_after_a_checkpoint_resumes_to_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     sppm_scene(d);
-    let reference = sppm_reference(d);
-    let mut child = spawn_sppm(
-        d,
-        &[
-            "--checkpoint",
-            "c.ckpt",
-            "--checkpoint-every",
-            "100ms",
-            "--threads",
-            "2",
-        ],
-    );
-    wait_for(&d.join("c.ckpt"), &mut child);
-    child.kill().unwrap();
-    assert_eq!(child.wait().unwrap().signal(), Some(9));
-    assert!(!d.join("out.exr").exists());
-    let o = resume(d, "c.ckpt", &["--threads", "1"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_continued(&stderr(&o), "iteration", 100);
-    assert_eq!(std::fs::read(d.join("out.exr")).unwrap(), reference);
-    assert!(!d.join("c.ckpt").exists(), "a finished render removes its checkpoint");
-    assert_eq!(temp_files(d), Vec::<String>::new());
+    let reference = file_reference(d, "sppm.pbrt");
+    let err = killed_and_resumed(d, &file_args("sppm.pbrt", "out.exr"), wait_for, &reference);
+    assert_continued(&err, "iteration", 100);
 }
 
 /// SIGINT stops SPPM between iterations: a readable partial EXR recording the iterations
@@ -436,47 +237,19 @@ fn sppm_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     sppm_scene(d);
-    let reference = sppm_reference(d);
-    let mut child = spawn_sppm(d, &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
+    let reference = file_reference(d, "sppm.pbrt");
+    let mut child = spawn(d, &file_args("sppm.pbrt", "out.exr"), &EVERY_50MS);
     wait_for(&d.join("c.ckpt"), &mut child);
-    signal(&child, "-INT");
-    let o = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(130), "{err}");
+    let err = interrupt(child, "-INT", 130, d);
     assert!(err.contains("SPPM iterations") && err.contains("--resume"), "{err}");
-    assert_eq!(temp_files(d), Vec::<String>::new());
     let out = d.join("out.exr");
-    let meta = mcrender_formats::image_io::read_exr_metadata(&out).unwrap();
-    let done: u32 = meta
-        .iter()
-        .find(|(k, _)| k == "mcrender.iterations")
-        .map(|(_, v)| v.parse().unwrap())
-        .expect("iteration count in the EXR header");
-    assert!((1..100).contains(&done), "{meta:?}");
-    assert!(meta.contains(&("mcrender.iterationsRequested".into(), "100".into())));
-    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
-    assert!(
-        partial.pixels.iter().any(|p| p.r > 0.0),
-        "the partial image has content"
-    );
+    let done = exr_count(&out, "mcrender.iterations");
+    assert!((1..100).contains(&done), "{done} iterations");
+    assert_eq!(exr_count(&out, "mcrender.iterationsRequested"), 100);
+    assert_partial(&out, FILM, true);
     assert_ne!(std::fs::read(&out).unwrap(), reference, "a partial render differs");
-    let o = resume(d, "c.ckpt", &[]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(assert_continued(&stderr(&o), "iteration", 100), u64::from(done));
-    assert_eq!(std::fs::read(&out).unwrap(), reference);
-}
-
-/// The resume continued the saved state (it did not start again): the `unit` (iteration,
-/// mutation) it continued from, between 1 and `total` - 1.
-fn assert_continued(err: &str, unit: &str, total: u64) -> u64 {
-    let k: u64 = err
-        .split(&format!("continued from {unit} "))
-        .nth(1)
-        .and_then(|rest| rest.split(')').next())
-        .and_then(|k| k.parse().ok())
-        .unwrap_or_else(|| panic!("the resume says where it continued from: {err}"));
-    assert!((1..total).contains(&k), "{err}");
-    k
+    let err = assert_resumes_to(d, "c.ckpt", &[], &reference);
+    assert_eq!(assert_continued(&err, "iteration", 100), done);
 }
 
 /// The Cornell box rendered by MLT at depth 5: 24x24 pixels x 2000 mutations per pixel
@@ -520,37 +293,8 @@ fn mlt_killed_after_a_checkpoint_resumes_to_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     mlt_scene(d);
-    let mut child = spawn_file(
-        d,
-        "mlt.pbrt",
-        &[
-            "--checkpoint",
-            "c.ckpt",
-            "--checkpoint-every",
-            "100ms",
-            "--threads",
-            "2",
-        ],
-    );
-    wait_for_progress(&d.join("c.ckpt"), &mut child);
-    child.kill().unwrap();
-    assert_eq!(child.wait().unwrap().signal(), Some(9));
-    assert!(!d.join("out.exr").exists());
-    let o = resume(d, "c.ckpt", &["--threads", "1"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_continued(&stderr(&o), "mutation", MLT_MUTATIONS);
-    assert_eq!(std::fs::read(d.join("out.exr")).unwrap(), reference);
-    assert!(!d.join("c.ckpt").exists(), "a finished render removes its checkpoint");
-    assert_eq!(temp_files(d), Vec::<String>::new());
-}
-
-/// The count under `key` in an EXR's header.
-fn exr_count(path: &Path, key: &str) -> u64 {
-    let meta = mcrender_formats::image_io::read_exr_metadata(path).unwrap();
-    meta.iter()
-        .find(|(k, _)| k == key)
-        .map(|(_, v)| v.parse().unwrap())
-        .unwrap_or_else(|| panic!("{key} in the EXR header: {meta:?}"))
+    let err = killed_and_resumed(d, &file_args("mlt.pbrt", "out.exr"), wait_for_progress, reference);
+    assert_continued(&err, "mutation", MLT_MUTATIONS);
 }
 
 /// SIGINT stops MLT after a whole mutation of each chain: a readable partial EXR recording
@@ -561,29 +305,18 @@ fn mlt_sigint_writes_a_partial_exr_and_a_checkpoint_that_resume_identically() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     mlt_scene(d);
-    let mut child = spawn_file(d, "mlt.pbrt", &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
+    let mut child = spawn(d, &file_args("mlt.pbrt", "out.exr"), &EVERY_50MS);
     wait_for_progress(&d.join("c.ckpt"), &mut child);
-    signal(&child, "-INT");
-    let o = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(130), "{err}");
+    let err = interrupt(child, "-INT", 130, d);
     assert!(err.contains("MLT mutations") && err.contains("--resume"), "{err}");
-    assert_eq!(temp_files(d), Vec::<String>::new());
     let out = d.join("out.exr");
     let done = exr_count(&out, "mcrender.mutations");
     assert!((1..MLT_MUTATIONS).contains(&done), "{done} mutations");
     assert_eq!(exr_count(&out, "mcrender.mutationsRequested"), MLT_MUTATIONS);
-    let partial = mcrender_formats::image_io::read_exr(&out).unwrap();
-    assert_eq!((partial.width, partial.height), (24, 24));
-    assert!(
-        partial.pixels.iter().any(|p| p.r > 0.0),
-        "the partial image has content"
-    );
+    assert_partial(&out, FILM, true);
     assert_ne!(std::fs::read(&out).unwrap(), reference, "a partial render differs");
-    let o = resume(d, "c.ckpt", &[]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(assert_continued(&stderr(&o), "mutation", MLT_MUTATIONS), done);
-    assert_eq!(std::fs::read(&out).unwrap(), reference);
+    let err = assert_resumes_to(d, "c.ckpt", &[], reference);
+    assert_eq!(assert_continued(&err, "mutation", MLT_MUTATIONS), done);
 }
 
 /// Whether the process has handlers for SIGINT and SIGTERM (Linux: `SigCgt` in
@@ -607,7 +340,7 @@ fn mlt_sigterm_without_checkpoint_writes_the_partial_image() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     mlt_scene(d);
-    let mut child = spawn_file(d, "mlt.pbrt", &[]);
+    let mut child = spawn(d, &file_args("mlt.pbrt", "out.exr"), &[]);
     let start = Instant::now();
     while !handles_signals(&child) {
         assert!(
@@ -620,18 +353,12 @@ fn mlt_sigterm_without_checkpoint_writes_the_partial_image() {
         );
         std::thread::sleep(Duration::from_millis(5));
     }
-    signal(&child, "-TERM");
-    let o = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(143), "{err}");
+    let err = interrupt(child, "-TERM", 143, d);
     assert!(err.contains("SIGTERM") && err.contains("out.exr.ckpt"), "{err}");
     let out = d.join("out.exr");
     assert!(exr_count(&out, "mcrender.mutations") < MLT_MUTATIONS);
-    assert_eq!(mcrender_formats::image_io::read_exr(&out).unwrap().width, 24);
-    assert_eq!(temp_files(d), Vec::<String>::new());
-    let o = resume(d, "out.exr.ckpt", &[]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(std::fs::read(&out).unwrap(), reference);
+    assert_partial(&out, FILM, false);
+    assert_resumes_to(d, "out.exr.ckpt", &[], reference);
 }
 
 /// An MLT render refuses a path render's checkpoint; a path render refuses an MLT
@@ -644,26 +371,26 @@ fn mlt_checkpoints_of_another_integrator_or_scene_are_refused() {
     let p = path_dir.path();
     let path_ckpt = std::fs::read(p.join("c.ckpt")).unwrap();
     mlt_scene(p);
-    let mut a = file_args("mlt.pbrt", "out.exr");
-    a.extend(["--checkpoint".into(), "c.ckpt".into()]);
-    let a: Vec<&str> = a.iter().map(String::as_str).collect();
-    assert_refused(&mcrender(&a, p), p, &path_ckpt, "a path checkpoint for mlt");
+    let o = run(p, &file_args("mlt.pbrt", "out.exr"), &["--checkpoint", "c.ckpt"]);
+    assert_refused(&o, p, &path_ckpt, "a path checkpoint for mlt");
 
     // An MLT checkpoint, offered to a path render, another MLT render, and after an edit.
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     mlt_scene(d);
     std::fs::copy(scene("cornell-box/scene-v4.pbrt"), d.join("path.pbrt")).unwrap();
-    let mut child = spawn_file(d, "mlt.pbrt", &["--checkpoint", "c.ckpt", "--checkpoint-every", "50ms"]);
-    wait_for(&d.join("c.ckpt"), &mut child);
-    child.kill().unwrap();
-    child.wait().unwrap();
+    kill_at_checkpoint(
+        spawn(d, &file_args("mlt.pbrt", "out.exr"), &EVERY_50MS),
+        &d.join("c.ckpt"),
+    );
     std::fs::write(d.join("out.exr"), b"sentinel").unwrap();
     let good = std::fs::read(d.join("c.ckpt")).unwrap();
     let run = |file: &str, extra: &[&str]| {
-        let mut a = file_args(file, "out.exr");
-        a.extend(["--checkpoint", "c.ckpt"].iter().chain(extra).map(|s| s.to_string()));
-        mcrender(&a.iter().map(String::as_str).collect::<Vec<_>>(), d)
+        run(
+            d,
+            &file_args(file, "out.exr"),
+            &[&["--checkpoint", "c.ckpt"], extra].concat(),
+        )
     };
     assert_refused(&run("path.pbrt", &[]), d, &good, "an mlt checkpoint for path");
     assert_refused(&run("mlt.pbrt", &["--seed", "99"]), d, &good, "another seed");

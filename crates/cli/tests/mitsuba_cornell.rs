@@ -3,27 +3,20 @@
 //! noise: every pixel's difference is measured in units of its standard error (from both
 //! renders' own per-pixel sample variances, independent sampler), and so is the difference
 //! of the image means. A 5% brightness error fails the test (checked in the test itself).
-//! Skipped (loudly) when `MCRENDER_SCENES` is unset.
+//! It fails when the shared scenes cannot be found, unless `MCRENDER_SKIP_SHARED_SCENES`
+//! is set (then a visible `SKIPPED` line).
 
-use std::path::PathBuf;
+mod common;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene};
 use mcrender_formats::load;
 
+use common::shared_scenes::shared_scenes_dir;
+
 const SIZE: u32 = 64;
 const SPP: u32 = 128;
-
-fn scenes_dir() -> Option<PathBuf> {
-    match std::env::var_os("MCRENDER_SCENES") {
-        Some(d) => Some(PathBuf::from(d)),
-        None => {
-            eprintln!("SKIPPED: MCRENDER_SCENES is not set");
-            None
-        }
-    }
-}
 
 /// Mean image and per-pixel variance of the mean.
 fn render_file(path: &std::path::Path, seed: u64) -> (Vec<Rgb>, Vec<Rgb>) {
@@ -70,7 +63,9 @@ fn agreement(a: &(Vec<Rgb>, Vec<Rgb>), b: &(Vec<Rgb>, Vec<Rgb>), scale_a: f32) -
 
 #[test]
 fn mitsuba_and_pbrt_cornell_boxes_agree_within_noise() {
-    let Some(dir) = scenes_dir() else { return };
+    let Some(dir) = shared_scenes_dir("mitsuba_and_pbrt_cornell_boxes_agree_within_noise") else {
+        return;
+    };
     let m = render_file(&dir.join("cornell-box/mitsuba/scene_v3.xml"), 1);
     let p = render_file(&dir.join("cornell-box/scene-v4.pbrt"), 2);
     let (fraction, mean_z) = agreement(&m, &p, 1.0);

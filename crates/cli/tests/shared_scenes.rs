@@ -1,11 +1,14 @@
 //! The shared scenes (`$MCRENDER_SCENES/{cornell-box,veach-mis,coffee}`) against their
 //! Tungsten references, compared with [`ImageComparison`] after box-downsampling the
-//! reference to our reduced resolution. They fail when the scenes cannot be found, unless `MCRENDER_SKIP_SHARED_SCENES` is set.
+//! reference to our reduced resolution. They fail when the scenes cannot be found, unless
+//! `MCRENDER_SKIP_SHARED_SCENES` is set.
 //!
 //! References were rendered with up to 64 bounces, hence max depth 65 here.
 
+mod common;
+
 use mcrender_core::material::CoatedDiffuseMaterial;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::film::{block_means_of, downsample_box, ImageComparison, BLOCK_REL_EPSILON};
@@ -14,35 +17,9 @@ use mcrender_core::scene::{MaterialDesc, Scene, SceneDescription};
 use mcrender_formats::image_io::{read_exr, ImageRgb};
 use mcrender_formats::pbrt::load_file;
 
-const BLOCK: u32 = 8;
+use common::shared_scenes::shared_scenes_dir;
 
-/// The shared scene directory: `MCRENDER_SCENES`, else `shared/scenes` beside the clone.
-/// Without either the test fails, unless `MCRENDER_SKIP_SHARED_SCENES` is set: then it is
-/// skipped with a visible `SKIPPED` line (issue 10: these four tests used to report "ok" in
-/// 0.00 s when the scenes were missing, the skip message swallowed by the test harness).
-fn scenes_dir(test: &str) -> Option<PathBuf> {
-    // Written to stderr directly (not eprintln!) so that the test harness does not capture
-    // it: a skipped test must be seen.
-    use std::io::Write as _;
-    if let Some(dir) = std::env::var_os("MCRENDER_SCENES") {
-        return Some(PathBuf::from(dir));
-    }
-    // Beside a clone, as CI lays it out (`.ci/run` sets MCRENDER_SCENES the same way).
-    let beside = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
-    if beside.is_dir() {
-        return Some(beside);
-    }
-    if std::env::var_os("MCRENDER_SKIP_SHARED_SCENES").is_some() {
-        let _ = writeln!(
-            std::io::stderr(),
-            "SKIPPED {test}: MCRENDER_SCENES is not set and MCRENDER_SKIP_SHARED_SCENES is"
-        );
-        return None;
-    }
-    panic!(
-        "{test} needs the shared scenes: set MCRENDER_SCENES to the directory holding cornell-box/, coffee/ and veach-mis/ (or set MCRENDER_SKIP_SHARED_SCENES=1 to skip these tests on purpose)"
-    );
-}
+const BLOCK: u32 = 8;
 
 fn render_scene(path: &std::path::Path, w: u32, h: u32, spp: u32) -> RenderOutput {
     render_scene_at_depth(path, w, h, spp, Some(65))
@@ -142,7 +119,7 @@ fn print(name: &str, c: &ImageComparison) {
 /// --error-image`).
 #[test]
 fn cornell_box_matches_tungsten() {
-    let Some(dir) = scenes_dir("cornell_box_matches_tungsten") else {
+    let Some(dir) = shared_scenes_dir("cornell_box_matches_tungsten") else {
         return;
     };
     let (w, h) = (256, 256);
@@ -182,7 +159,7 @@ fn cornell_box_matches_tungsten() {
 /// Bounds: means within 1.5%, block error below the expected + 0.02 (a 3% bias fails).
 #[test]
 fn veach_mis_matches_mitsuba() {
-    let Some(dir) = scenes_dir("veach_mis_matches_mitsuba") else {
+    let Some(dir) = shared_scenes_dir("veach_mis_matches_mitsuba") else {
         return;
     };
     let (w, h) = (320, 180);
@@ -230,7 +207,7 @@ fn veach_mis_matches_mitsuba() {
 ///   plates, where Tungsten is black and GGX is not; it is not asserted here.
 #[test]
 fn veach_mis_tungsten_reference_differs_by_a_documented_factor() {
-    let Some(dir) = scenes_dir("veach_mis_tungsten_reference_differs_by_a_documented_factor") else {
+    let Some(dir) = shared_scenes_dir("veach_mis_tungsten_reference_differs_by_a_documented_factor") else {
         return;
     };
     let (w, h) = (320, 180);
@@ -291,7 +268,7 @@ fn veach_mis_tungsten_reference_differs_by_a_documented_factor() {
 /// bound) and the block error below 0.06, which the render as written fails in red (0.078).
 #[test]
 fn coffee_matches_tungsten_once_the_coat_is_lossless() {
-    let Some(dir) = scenes_dir("coffee_matches_tungsten_once_the_coat_is_lossless") else {
+    let Some(dir) = shared_scenes_dir("coffee_matches_tungsten_once_the_coat_is_lossless") else {
         return;
     };
     let path = dir.join("coffee/scene-v4.pbrt");

@@ -5,7 +5,6 @@
 
 mod common;
 
-use std::f32::consts::PI;
 use std::sync::Arc;
 
 use common::*;
@@ -19,13 +18,9 @@ use mcrender_core::texture::{CheckerboardTexture, Texture, TextureMapping};
 /// direct lighting only; and the mean radiance expected without occluders,
 /// `albedo / pi * E`.
 fn lit_receiver() -> (SceneDescription, f64) {
-    let mut d = empty_scene();
-    add_receiver(&mut d, 0.8);
-    add_square_light(&mut d, 0.5, 1.0, Rgb::splat(2.0));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_square_light(0.5, 1.0, 2.0, 0.8);
     d.sampler.samples_per_pixel = 256;
-    (d, f64::from(0.8 / PI * square_light_irradiance(0.5, 1.0, 2.0)))
+    (d, f64::from(expected.g))
 }
 
 /// A black square of half-side `s` centred at `c` with normal `n`, uv from 0 to 1 across.

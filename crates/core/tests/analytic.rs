@@ -5,19 +5,14 @@ mod common;
 
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::math::{Vec3, PI};
-use mcrender_core::scene::{AreaLightDesc, LightDesc};
+use mcrender_core::math::PI;
 
 /// A diffuse sphere of albedo 0.5 and radius 1 seen from inside, lit by a point light of
 /// intensity pi at its centre: direct radiance is (a/pi)(I/r^2) = 0.5, and the
 /// interreflections inside a sphere add a geometric series, L = 0.5 / (1 - 0.5) = 1.
 #[test]
 fn sphere_lit_from_its_centre_has_radiance_one() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(PI),
-    });
+    let mut d = point_lit_sphere(PI);
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 2048;
     assert_mean_radiance(&d, Rgb::splat(1.0));
@@ -30,16 +25,7 @@ fn sphere_lit_from_its_centre_has_radiance_one() {
 fn closed_emissive_sphere_has_radiance_le_over_one_minus_albedo() {
     let le = Rgb::new(1.0, 2.0, 0.5);
     let a = Rgb::new(0.5, 0.25, 0.75);
-    let d0 = inside_sphere_scene(
-        2.0,
-        a,
-        Some(AreaLightDesc {
-            radiance: le,
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let d0 = emissive_sphere(2.0, a, le);
     let mut d = d0.clone();
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 2048;
@@ -63,21 +49,9 @@ fn closed_emissive_sphere_has_radiance_le_over_one_minus_albedo() {
 fn irradiance_under_uniform_sky_is_pi_l() {
     let l = 1.5;
     let rho = 0.8;
-    let mut d = inside_sphere_scene(
-        50.0,
-        Rgb::BLACK,
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(l),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
-    add_receiver(&mut d, rho);
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_sky(l, rho);
     d.sampler.samples_per_pixel = 4096;
-    assert_mean_radiance(&d, Rgb::splat(rho * l));
+    assert_mean_radiance(&d, expected);
 }
 
 /// A square emitter of side 2s at height h, centred above the receiver and facing it.
@@ -86,42 +60,24 @@ fn irradiance_under_uniform_sky_is_pi_l() {
 /// X = a/c, Y = b/c; the centred square is four such corners, and E = pi L F.
 #[test]
 fn irradiance_under_a_square_light_matches_the_view_factor() {
-    let (s, h, l, rho) = (0.5f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_square_light(0.5, 1.0, 3.0, 0.7);
     d.sampler.samples_per_pixel = 4096;
-    let e = square_light_irradiance(s, h, l);
-    assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
+    assert_mean_radiance(&d, expected);
 }
 
 /// A sphere light of radius R at distance d above the receiver: E = pi L (R/d)^2.
 #[test]
 fn irradiance_under_a_sphere_light_matches_the_closed_form() {
-    let (r, dist, l, rho) = (0.3f32, 1.2f32, 2.0f32, 0.9f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_sphere_light(0.3, 1.2, 2.0, 0.9);
     d.sampler.samples_per_pixel = 4096;
-    let e = PI * l * (r / dist) * (r / dist);
-    assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
+    assert_mean_radiance(&d, expected);
 }
 
 /// A disk light of radius R at height h on the receiver's axis, facing down:
 /// E = pi L R^2 / (R^2 + h^2).
 #[test]
 fn irradiance_under_a_disk_light_matches_the_closed_form() {
-    let (r, h, l, rho) = (0.6f32, 0.9f32, 2.5f32, 0.8f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_disk_light(&mut d, r, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_disk_light(0.6, 0.9, 2.5, 0.8);
     d.sampler.samples_per_pixel = 4096;
-    let e = PI * l * r * r / (r * r + h * h);
-    assert_mean_radiance(&d, Rgb::splat(rho / PI * e));
+    assert_mean_radiance(&d, expected);
 }

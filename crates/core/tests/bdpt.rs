@@ -15,7 +15,7 @@ use mcrender_core::integrator::BdptIntegrator;
 use mcrender_core::integrator::TraceStats;
 use mcrender_core::math::{UVec2, Vec2, Vec3, PI};
 use mcrender_core::sampling::Sampler;
-use mcrender_core::scene::{AreaLightDesc, BdptDesc, LightDesc, Scene, SceneDescription};
+use mcrender_core::scene::{BdptDesc, Scene, SceneDescription};
 
 /// Mean and standard error per channel of the image mean, over `spp` samples per pixel.
 fn bdpt_mean(d: &SceneDescription, bdpt: BdptDesc) -> ([f64; 3], [f64; 3]) {
@@ -56,46 +56,19 @@ fn bdpt_mean(d: &SceneDescription, bdpt: BdptDesc) -> ([f64; 3], [f64; 3]) {
     (mean, se)
 }
 
-fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {
-    for c in 0..3 {
-        let e = f64::from(expected[c]);
-        let tol = 4.0 * se[c] + 1e-5 * e.abs().max(1e-3);
-        eprintln!("{label} channel {c}: {:.5} vs {e:.5} (se {:.2e})", mean[c], se[c]);
-        assert!(
-            (mean[c] - e).abs() <= tol,
-            "{label}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
-            mean[c],
-            se[c]
-        );
-    }
-}
-
 fn power_mis() -> BdptDesc {
     BdptDesc::default()
 }
 
 fn closed_sphere(albedo: f32, le: f32) -> SceneDescription {
-    inside_sphere_scene(
-        2.0,
-        Rgb::splat(albedo),
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(le),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    )
+    emissive_sphere(2.0, Rgb::splat(albedo), Rgb::splat(le))
 }
 
 /// A sphere of albedo 1/2 lit by a point light of intensity pi at its centre: depth k
 /// carries 2^-k, so up to depth D the radiance is 1 - 2^-D.
 #[test]
 fn sphere_lit_from_its_centre() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(PI),
-    });
+    let mut d = point_lit_sphere(PI);
     let depth = 8;
     d.integrator.max_depth = depth;
     d.sampler.samples_per_pixel = 64;
@@ -125,40 +98,20 @@ fn closed_emissive_sphere() {
 
 #[test]
 fn uniform_sky() {
-    let mut d = closed_sphere(0.0, 1.5);
-    d.shapes[0].geometry =
-        mcrender_core::scene::GeometryDesc::full_sphere(50.0, mcrender_core::math::Transform::IDENTITY);
-    add_receiver(&mut d, 0.8);
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_sky(1.5, 0.8);
     d.sampler.samples_per_pixel = 256;
-    assert_close("uniform sky", bdpt_mean(&d, power_mis()), Rgb::splat(0.8 * 1.5));
+    assert_close("uniform sky", bdpt_mean(&d, power_mis()), expected);
 }
 
 #[test]
 fn sphere_and_square_lights() {
-    let (r, dist, l, rho) = (0.5f32, 1.2f32, 2.0f32, 0.9f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_sphere_light(0.5, 1.2, 2.0, 0.9);
     d.sampler.samples_per_pixel = 256;
-    assert_close(
-        "sphere light",
-        bdpt_mean(&d, power_mis()),
-        Rgb::splat(rho * l * (r / dist) * (r / dist)),
-    );
+    assert_close("sphere light", bdpt_mean(&d, power_mis()), expected);
 
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
     d.sampler.samples_per_pixel = 256;
-    let e = square_light_irradiance(s, h, l);
-    assert_close("square light", bdpt_mean(&d, power_mis()), Rgb::splat(rho / PI * e));
+    assert_close("square light", bdpt_mean(&d, power_mis()), expected);
 }
 
 /// Each strategy alone, unweighted, estimates the light of its own path length: in the
@@ -195,16 +148,10 @@ fn each_strategy_alone_estimates_its_path_length() {
 /// noise, and all three must find the closed-form direct light.
 #[test]
 fn each_direct_strategy_alone_finds_the_direct_light() {
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
+    let (mut d, _) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
     d.camera.fov_degrees = 20.0;
     d.film = mcrender_core::scene::FilmDesc { width: 8, height: 8 };
-    d.integrator.max_depth = 1;
     d.sampler.samples_per_pixel = 512;
-    let e = square_light_irradiance(s, h, l);
     // With a 20 degree view the receiver does not fill the image: compare the strategies
     // with each other and with the full estimate instead of with the closed form.
     let full = bdpt_mean(&d, power_mis());
@@ -228,7 +175,6 @@ fn each_direct_strategy_alone_finds_the_direct_light() {
             );
         }
     }
-    let _ = e;
 }
 
 /// The MIS-weighted strategies add up to the full estimate, sample by sample (each
@@ -277,11 +223,7 @@ fn weighted_strategies_sum_to_the_full_image() {
 fn one_and_two_threads_give_identical_bytes() {
     use mcrender_core::render::{render, RenderOptions};
     use mcrender_core::scene::IntegratorKind;
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
+    let (mut d, _) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
     d.camera.fov_degrees = 30.0;
     d.film = mcrender_core::scene::FilmDesc { width: 24, height: 20 };
     d.integrator.kind = IntegratorKind::Bdpt;

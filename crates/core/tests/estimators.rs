@@ -7,9 +7,9 @@ mod common;
 
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::math::{Vec3, PI};
+use mcrender_core::math::PI;
 use mcrender_core::render::{render, RenderError, RenderOptions};
-use mcrender_core::scene::{AreaLightDesc, DirectStrategy, LightDesc, RussianRoulette, Scene, SceneDescription};
+use mcrender_core::scene::{DirectStrategy, RussianRoulette, Scene, SceneDescription};
 
 fn with(d: &SceneDescription, strategy: DirectStrategy, light_samples: u32) -> SceneDescription {
     let mut d = d.clone();
@@ -37,67 +37,37 @@ fn check_all_strategies(d: &SceneDescription, expected: Rgb, label: &str) {
     }
 }
 
-fn uniform_sky() -> SceneDescription {
-    let mut d = inside_sphere_scene(
-        50.0,
-        Rgb::BLACK,
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(1.5),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
-    add_receiver(&mut d, 0.8);
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+/// The receiver under a uniform sky at 1024 samples per pixel, and its radiance.
+fn uniform_sky() -> (SceneDescription, Rgb) {
+    let (mut d, expected) = receiver_under_sky(1.5, 0.8);
     d.sampler.samples_per_pixel = 1024;
-    d
+    (d, expected)
 }
 
 #[test]
 fn every_technique_is_unbiased_under_a_uniform_sky() {
-    check_all_strategies(&uniform_sky(), Rgb::splat(0.8 * 1.5), "uniform sky");
+    let (d, expected) = uniform_sky();
+    check_all_strategies(&d, expected, "uniform sky");
 }
 
 #[test]
 fn every_technique_is_unbiased_under_a_sphere_light() {
-    let (r, dist, l, rho) = (0.5f32, 1.2f32, 2.0f32, 0.9f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_sphere_light(0.5, 1.2, 2.0, 0.9);
     d.sampler.samples_per_pixel = 2048;
-    check_all_strategies(&d, Rgb::splat(rho * l * (r / dist) * (r / dist)), "sphere light");
+    check_all_strategies(&d, expected, "sphere light");
 }
 
 #[test]
 fn every_technique_is_unbiased_under_a_square_light() {
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
     d.sampler.samples_per_pixel = 2048;
-    let e = square_light_irradiance(s, h, l);
-    check_all_strategies(&d, Rgb::splat(rho / PI * e), "square light");
+    check_all_strategies(&d, expected, "square light");
 }
 
 /// With interreflection (all bounces) every technique still converges to L_e / (1 - a).
 #[test]
 fn every_technique_is_unbiased_with_all_bounces() {
-    let mut d = inside_sphere_scene(
-        2.0,
-        Rgb::splat(0.5),
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(1.0),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(2.0, Rgb::splat(0.5), Rgb::splat(1.0));
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 512;
     check_all_strategies(&d, Rgb::splat(2.0), "closed emissive sphere");
@@ -105,7 +75,7 @@ fn every_technique_is_unbiased_with_all_bounces() {
 
 #[test]
 fn cosine_sampling_beats_uniform_under_a_uniform_sky() {
-    let d = uniform_sky();
+    let (d, _) = uniform_sky();
     let uniform = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::UniformHemisphere, 1)));
     let cosine = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::CosineHemisphere, 1)));
     eprintln!("variance: uniform {uniform:.3e}, cosine {cosine:.3e}");
@@ -114,7 +84,7 @@ fn cosine_sampling_beats_uniform_under_a_uniform_sky() {
 
 #[test]
 fn more_light_samples_lower_the_variance() {
-    let d = uniform_sky();
+    let (d, _) = uniform_sky();
     let one = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::LightArea, 1)));
     let four = mean_pixel_variance(&render_desc(&with(&d, DirectStrategy::LightArea, 4)));
     eprintln!("variance: 1 light sample {one:.3e}, 4 light samples {four:.3e}");
@@ -127,11 +97,7 @@ fn more_light_samples_lower_the_variance() {
 
 #[test]
 fn hemisphere_and_bsdf_sampling_refuse_point_lights() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(PI),
-    });
+    let d = point_lit_sphere(PI);
     for strategy in [
         DirectStrategy::UniformHemisphere,
         DirectStrategy::CosineHemisphere,
@@ -167,16 +133,7 @@ fn hemisphere_and_bsdf_sampling_refuse_point_lights() {
 /// does not depend on the machine.
 #[test]
 fn russian_roulette_is_unbiased_and_saves_work() {
-    let mut d = inside_sphere_scene(
-        2.0,
-        Rgb::splat(0.7),
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(1.0),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(2.0, Rgb::splat(0.7), Rgb::splat(1.0));
     d.integrator.max_depth = 64;
     d.sampler.samples_per_pixel = 1024;
     // Without roulette the truncated geometric series: sum_{k=0}^{64} 0.7^k.
@@ -234,7 +191,7 @@ fn russian_roulette_is_unbiased_and_saves_work() {
 #[test]
 fn sample_waves_merge_into_the_whole_render() {
     use mcrender_core::render::render_samples;
-    let mut d = uniform_sky();
+    let (mut d, _) = uniform_sky();
     d.sampler.samples_per_pixel = 8;
     let scene = Scene::build(&d).unwrap();
     let opts = RenderOptions::default();

@@ -9,27 +9,13 @@ use common::*;
 use mcrender_core::bsdf::fresnel::fr_dielectric;
 use mcrender_core::color::Rgb;
 use mcrender_core::material::{CoatedConductorMaterial, CoatedDiffuseMaterial, DiffuseMaterial, MixMaterial};
-use mcrender_core::math::{Mat4, Transform, Vec3, PI};
-use mcrender_core::scene::{
-    AreaLightDesc, DirectStrategy, GeometryDesc, MaterialDesc, Scene, SceneDescription, ShapeDesc,
-};
+use mcrender_core::math::{Mat4, Transform, Vec3};
+use mcrender_core::scene::{DirectStrategy, GeometryDesc, MaterialDesc, Scene, SceneDescription, ShapeDesc};
 
 /// The receiver of [`add_receiver`] under a uniform sky of radiance `sky`, seen at a
 /// grazing angle by a narrow camera, with direct lighting only.
 fn under_sky(sky: f32) -> SceneDescription {
-    let mut d = inside_sphere_scene(
-        50.0,
-        Rgb::BLACK,
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(sky),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
-    add_receiver(&mut d, 0.8);
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, _) = receiver_under_sky(sky, 0.8);
     d.sampler.samples_per_pixel = 512;
     d
 }
@@ -157,13 +143,9 @@ fn interface_sphere(m: u32, r: f32, centre: Vec3) -> ShapeDesc {
 #[test]
 fn interface_surfaces_change_nothing() {
     // The receiver lit by a square light above it: radiance albedo / pi * E.
-    let mut d = empty_scene();
-    add_receiver(&mut d, 0.8);
-    add_square_light(&mut d, 0.5, 1.0, Rgb::splat(2.0));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
+    let (mut d, expected) = receiver_under_square_light(0.5, 1.0, 2.0, 0.8);
     d.sampler.samples_per_pixel = 256;
-    let expected = f64::from(0.8 / PI * square_light_irradiance(0.5, 1.0, 2.0));
+    let expected = f64::from(expected.g);
     // Interface spheres across the camera rays and across the shadow rays.
     d.materials.push(MaterialDesc::Interface);
     let m = (d.materials.len() - 1) as u32;

@@ -11,9 +11,7 @@ use mcrender_core::integrator::{LightPathIntegrator, TraceStats};
 use mcrender_core::material::DiffuseMaterial;
 use mcrender_core::math::{Mat4, Transform, UVec2, Vec2, Vec3, PI};
 use mcrender_core::sampling::Sampler;
-use mcrender_core::scene::{
-    AreaLightDesc, GeometryDesc, LightDesc, MaterialDesc, SceneDescription, ShapeDesc, TriangleMeshDesc,
-};
+use mcrender_core::scene::{GeometryDesc, LightDesc, MaterialDesc, SceneDescription, ShapeDesc, TriangleMeshDesc};
 
 /// The splat image (sums / spp), its mean per channel and the mean's standard error.
 fn light_trace(d: &SceneDescription) -> (Vec<Rgb>, [f64; 3], [f64; 3]) {
@@ -87,11 +85,7 @@ fn aim_wider(d: &mut SceneDescription) {
 /// A point light at the centre of a diffuse sphere of albedo 1/2: L = 1 everywhere.
 #[test]
 fn sphere_lit_from_its_centre_has_radiance_one() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(PI),
-    });
+    let mut d = point_lit_sphere(PI);
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 4096;
     assert_light_traced_mean(&d, Rgb::splat(1.0));
@@ -103,16 +97,7 @@ fn sphere_lit_from_its_centre_has_radiance_one() {
 fn closed_emissive_sphere_has_radiance_le_over_one_minus_albedo() {
     let le = Rgb::new(1.0, 2.0, 0.5);
     let a = Rgb::new(0.5, 0.25, 0.75);
-    let mut d = inside_sphere_scene(
-        2.0,
-        a,
-        Some(AreaLightDesc {
-            radiance: le,
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(2.0, a, le);
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 4096;
     assert_light_traced_mean(&d, Rgb::new(le.r / (1.0 - a.r), le.g / (1.0 - a.g), le.b / (1.0 - a.b)));
@@ -160,39 +145,25 @@ fn uniform_sky_gives_radiance_rho_l() {
 
 #[test]
 fn irradiance_under_a_square_light_matches_the_view_factor() {
-    let (s, h, l, rho) = (0.5f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
+    let (mut d, expected) = receiver_under_square_light(0.5, 1.0, 3.0, 0.7);
     aim_wider(&mut d);
-    d.integrator.max_depth = 1;
     d.sampler.samples_per_pixel = 65536;
-    let e = square_light_irradiance(s, h, l);
-    assert_light_traced_mean(&d, Rgb::splat(rho / PI * e));
+    assert_light_traced_mean(&d, expected);
 }
 
 #[test]
 fn irradiance_under_a_sphere_light_matches_the_closed_form() {
-    let (r, dist, l, rho) = (0.3f32, 1.2f32, 2.0f32, 0.9f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
+    let (mut d, expected) = receiver_under_sphere_light(0.3, 1.2, 2.0, 0.9);
     aim_wider(&mut d);
-    d.integrator.max_depth = 1;
     d.sampler.samples_per_pixel = 65536;
-    let e = PI * l * (r / dist) * (r / dist);
-    assert_light_traced_mean(&d, Rgb::splat(rho / PI * e));
+    assert_light_traced_mean(&d, expected);
 }
 
 /// The check can fail: with the light 10% brighter than the expected value assumes, the
 /// estimate is rejected.
 #[test]
 fn a_wrong_expectation_is_rejected() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(1.1 * PI),
-    });
+    let mut d = point_lit_sphere(1.1 * PI);
     d.integrator.max_depth = u32::MAX;
     d.sampler.samples_per_pixel = 4096;
     let result = std::panic::catch_unwind(|| assert_light_traced_mean(&d, Rgb::splat(1.0)));

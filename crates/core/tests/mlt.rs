@@ -19,9 +19,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::integrator::mlt::{self, render_with_threads, MltOutput, MltSettings, MltState};
 use mcrender_core::math::{Mat4, Transform, Vec3, PI};
 use mcrender_core::sampling::{chi2, MltSampler, SampleSource};
-use mcrender_core::scene::{
-    AreaLightDesc, GeometryDesc, LightDesc, MaterialDesc, Scene, SceneDescription, ShapeDesc, TriangleMeshDesc,
-};
+use mcrender_core::scene::{GeometryDesc, MaterialDesc, Scene, SceneDescription, ShapeDesc, TriangleMeshDesc};
 
 /// Small settings: few bootstrap samples and mutations, so that a render takes milliseconds.
 fn settings(scene: &Scene, seed: u64) -> MltSettings {
@@ -70,44 +68,17 @@ fn mean_over_seeds(d: &SceneDescription, seeds: u64) -> ([f64; 3], [f64; 3]) {
     (mean, se)
 }
 
-fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {
-    for c in 0..3 {
-        let e = f64::from(expected[c]);
-        let tol = 4.0 * se[c] + 1e-5 * e.abs().max(1e-3);
-        eprintln!("{label} channel {c}: {:.5} vs {e:.5} (se {:.2e})", mean[c], se[c]);
-        assert!(
-            (mean[c] - e).abs() <= tol,
-            "{label}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
-            mean[c],
-            se[c]
-        );
-    }
-}
-
 const SEEDS: u64 = 12;
 
 fn closed_sphere(albedo: f32, le: f32) -> SceneDescription {
-    inside_sphere_scene(
-        2.0,
-        Rgb::splat(albedo),
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(le),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    )
+    emissive_sphere(2.0, Rgb::splat(albedo), Rgb::splat(le))
 }
 
 /// A sphere of albedo 1/2 lit by a point light of intensity pi at its centre: up to depth
 /// D the radiance is 1 - 2^-D.
 #[test]
 fn sphere_lit_from_its_centre() {
-    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
-    d.lights.push(LightDesc::Point {
-        position: Vec3::ZERO,
-        intensity: Rgb::splat(PI),
-    });
+    let mut d = point_lit_sphere(PI);
     d.integrator.max_depth = 6;
     let expected = 1.0 - 0.5f32.powi(6);
     assert_close(
@@ -153,36 +124,17 @@ fn closed_emissive_sphere_with_a_wide_filter() {
 
 #[test]
 fn uniform_sky() {
-    let mut d = closed_sphere(0.0, 1.5);
-    d.shapes[0].geometry = GeometryDesc::full_sphere(50.0, Transform::IDENTITY);
-    add_receiver(&mut d, 0.8);
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
-    assert_close("uniform sky", mean_over_seeds(&d, SEEDS), Rgb::splat(0.8 * 1.5));
+    let (d, expected) = receiver_under_sky(1.5, 0.8);
+    assert_close("uniform sky", mean_over_seeds(&d, SEEDS), expected);
 }
 
 #[test]
 fn sphere_and_square_lights() {
-    let (r, dist, l, rho) = (0.5f32, 1.2f32, 2.0f32, 0.9f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
-    assert_close(
-        "sphere light",
-        mean_over_seeds(&d, SEEDS),
-        Rgb::splat(rho * l * (r / dist) * (r / dist)),
-    );
+    let (d, expected) = receiver_under_sphere_light(0.5, 1.2, 2.0, 0.9);
+    assert_close("sphere light", mean_over_seeds(&d, SEEDS), expected);
 
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
-    let e = square_light_irradiance(s, h, l);
-    assert_close("square light", mean_over_seeds(&d, SEEDS), Rgb::splat(rho / PI * e));
+    let (d, expected) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
+    assert_close("square light", mean_over_seeds(&d, SEEDS), expected);
 }
 
 /// Two receivers side by side, `x < 0` of albedo 0.9 and `x > 0` of albedo 0.3, under a
@@ -266,11 +218,7 @@ fn chains_distribute_the_image_like_the_path_tracer() {
 
 #[test]
 fn one_and_two_threads_give_identical_bytes() {
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
+    let (mut d, _) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
     d.camera.fov_degrees = 30.0;
     d.film = mcrender_core::scene::FilmDesc { width: 24, height: 20 };
     d.integrator.max_depth = 3;

@@ -12,22 +12,13 @@ use mcrender_core::color::Rgb;
 use mcrender_core::film::{Film, PixelStats};
 use mcrender_core::math::Vec2;
 use mcrender_core::render::{RenderError, RenderObserver, RenderOptions, RenderSession, Tile};
-use mcrender_core::scene::{AreaLightDesc, FilterDesc, IntegratorKind, Scene, SceneDescription};
+use mcrender_core::scene::{FilterDesc, IntegratorKind, Scene, SceneDescription};
 
 /// A small noisy scene: a glowing sphere around a diffuse square, three bounces, a
 /// Gaussian filter (weights other than one, so rounding shows), a size that does not divide
 /// into tiles.
 fn scene() -> SceneDescription {
-    let mut d = inside_sphere_scene(
-        5.0,
-        Rgb::splat(0.5),
-        Some(AreaLightDesc {
-            radiance: Rgb::new(1.0, 0.7, 0.3),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(5.0, Rgb::splat(0.5), Rgb::new(1.0, 0.7, 0.3));
     add_receiver(&mut d, 0.8);
     d.film.width = 13;
     d.film.height = 9;

@@ -7,8 +7,7 @@ mod common;
 
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::math::PI;
-use mcrender_core::scene::{AreaLightDesc, SamplerKind, SceneDescription};
+use mcrender_core::scene::{SamplerKind, SceneDescription};
 
 const KINDS: [SamplerKind; 3] = [
     SamplerKind::Independent,
@@ -29,14 +28,8 @@ fn with_sampler(d: &SceneDescription, kind: SamplerKind) -> SceneDescription {
 
 /// A diffuse receiver under a square light; the radiance at its centre in closed form.
 fn square_light() -> (SceneDescription, f64) {
-    let (s, h, l, rho) = (0.8f32, 1.0f32, 3.0f32, 0.7f32);
-    let mut d = empty_scene();
-    add_receiver(&mut d, rho);
-    add_square_light(&mut d, s, h, Rgb::splat(l));
-    aim_at_receiver(&mut d);
-    d.integrator.max_depth = 1;
-    let e = square_light_irradiance(s, h, l);
-    (d, f64::from(rho / PI * e))
+    let (d, expected) = receiver_under_square_light(0.8, 1.0, 3.0, 0.7);
+    (d, f64::from(expected.g))
 }
 
 #[test]
@@ -52,16 +45,7 @@ fn every_sampler_is_unbiased_under_a_square_light() {
 fn every_sampler_is_unbiased_with_all_bounces() {
     // A closed emissive sphere of albedo 1/2: L = L_e / (1 - a) = 2. Paths run far past the
     // 64 Sobol' dimensions into the padded ones.
-    let mut d = inside_sphere_scene(
-        2.0,
-        Rgb::splat(0.5),
-        Some(AreaLightDesc {
-            radiance: Rgb::splat(1.0),
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(2.0, Rgb::splat(0.5), Rgb::splat(1.0));
     d.integrator.max_depth = u32::MAX;
     for kind in KINDS {
         eprintln!("{kind:?}");

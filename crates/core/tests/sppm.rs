@@ -10,7 +10,7 @@ use common::*;
 use mcrender_core::color::Rgb;
 use mcrender_core::integrator::sppm::{render, SppmOutput, SppmSettings};
 use mcrender_core::math::{Vec3, PI};
-use mcrender_core::scene::{AreaLightDesc, LightDesc, Scene, SceneDescription};
+use mcrender_core::scene::{LightDesc, Scene, SceneDescription};
 
 fn run(d: &SceneDescription, iterations: u32, photons: u64, radius: f32, threads: usize) -> SppmOutput {
     run_seed(d, iterations, photons, radius, threads, 7)
@@ -79,16 +79,7 @@ fn sphere_lit_from_its_centre_converges_to_one() {
 fn closed_emissive_sphere_converges_to_le_over_one_minus_albedo() {
     let le = Rgb::new(1.0, 2.0, 0.5);
     let a = 0.5;
-    let mut d = inside_sphere_scene(
-        2.0,
-        Rgb::splat(a),
-        Some(AreaLightDesc {
-            radiance: le,
-            two_sided: false,
-            power: None,
-        }),
-        true,
-    );
+    let mut d = emissive_sphere(2.0, Rgb::splat(a), le);
     d.film.width = 8;
     d.film.height = 8;
     d.integrator.max_depth = 24;

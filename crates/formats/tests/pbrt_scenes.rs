@@ -2,6 +2,9 @@
 //! `MCRENDER_SCENES` names the directory holding `cornell-box/`, `coffee/`, `veach-mis/`)
 //! the shared test scenes.
 
+#[path = "common/shared_scenes.rs"]
+mod shared_scenes;
+
 use mcrender_core::material::{CoatedDiffuseMaterial, ConductorMaterial, DiffuseMaterial};
 use std::path::{Path, PathBuf};
 
@@ -10,36 +13,10 @@ use mcrender_core::math::Vec3;
 use mcrender_core::scene::{FilterDesc, GeometryDesc, MaterialDesc, SamplerKind, SceneDescription};
 use mcrender_formats::pbrt::{load_file, LoadedScene};
 use mcrender_formats::SceneErrorKind;
+use shared_scenes::shared_scenes_dir;
 
 fn cornell_copy() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/cornell-box/scene-v4.pbrt")
-}
-
-/// The shared scene directory: `MCRENDER_SCENES`, else `shared/scenes` beside the clone.
-/// Without either the test fails, unless `MCRENDER_SKIP_SHARED_SCENES` is set: then it is
-/// skipped with a visible `SKIPPED` line (issue 10: skipped tests used to pass silently).
-fn shared_scenes(test: &str) -> Option<PathBuf> {
-    // Written to stderr directly (not eprintln!) so that the test harness does not capture
-    // it: a skipped test must be seen.
-    use std::io::Write as _;
-    if let Some(dir) = std::env::var_os("MCRENDER_SCENES") {
-        return Some(PathBuf::from(dir));
-    }
-    // Beside a clone, as CI lays it out (`.ci/run` sets MCRENDER_SCENES the same way).
-    let beside = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
-    if beside.is_dir() {
-        return Some(beside);
-    }
-    if std::env::var_os("MCRENDER_SKIP_SHARED_SCENES").is_some() {
-        let _ = writeln!(
-            std::io::stderr(),
-            "SKIPPED {test}: MCRENDER_SCENES is not set and MCRENDER_SKIP_SHARED_SCENES is"
-        );
-        return None;
-    }
-    panic!(
-        "{test} needs the shared scenes: set MCRENDER_SCENES to the directory holding cornell-box/, coffee/ and veach-mis/ (or set MCRENDER_SKIP_SHARED_SCENES=1 to skip these tests on purpose)"
-    );
 }
 
 fn close(a: Vec3, b: Vec3) -> bool {
@@ -125,7 +102,7 @@ fn cornell_box_copy_loads_as_expected() {
 
 #[test]
 fn shared_cornell_box_matches_the_copy() {
-    let Some(dir) = shared_scenes("shared_cornell_box_matches_the_copy") else {
+    let Some(dir) = shared_scenes_dir("shared_cornell_box_matches_the_copy") else {
         return;
     };
     let shared = load_file(&dir.join("cornell-box/scene-v4.pbrt")).unwrap();
@@ -136,7 +113,7 @@ fn shared_cornell_box_matches_the_copy() {
 
 #[test]
 fn coffee_loads_with_its_coated_plastics() {
-    let Some(dir) = shared_scenes("coffee_loads_with_its_coated_plastics") else {
+    let Some(dir) = shared_scenes_dir("coffee_loads_with_its_coated_plastics") else {
         return;
     };
     let loaded = load_file(&dir.join("coffee/scene-v4.pbrt")).unwrap();
@@ -163,7 +140,7 @@ fn coffee_loads_with_its_coated_plastics() {
 
 #[test]
 fn veach_mis_loads_with_its_conductor_plates() {
-    let Some(dir) = shared_scenes("veach_mis_loads_with_its_conductor_plates") else {
+    let Some(dir) = shared_scenes_dir("veach_mis_loads_with_its_conductor_plates") else {
         return;
     };
     let scene = load_file(&dir.join("veach-mis/scene-v4.pbrt")).unwrap_or_else(|e| panic!("{e}"));
@@ -211,7 +188,7 @@ fn missing_scene_file_is_an_io_error() {
 fn coffee_geometry_loads_once_its_materials_are_diffuse() {
     // Exercises plymesh on real binary PLY files: swap the unsupported material types for
     // "diffuse" (their other parameters then only cause warnings).
-    let Some(dir) = shared_scenes("coffee_geometry_loads_once_its_materials_are_diffuse") else {
+    let Some(dir) = shared_scenes_dir("coffee_geometry_loads_once_its_materials_are_diffuse") else {
         return;
     };
     let coffee = dir.join("coffee");
@@ -252,7 +229,7 @@ fn coffee_geometry_loads_once_its_materials_are_diffuse() {
 
 #[test]
 fn veach_mis_geometry_loads_once_its_materials_are_diffuse() {
-    let Some(dir) = shared_scenes("veach_mis_geometry_loads_once_its_materials_are_diffuse") else {
+    let Some(dir) = shared_scenes_dir("veach_mis_geometry_loads_once_its_materials_are_diffuse") else {
         return;
     };
     let veach = dir.join("veach-mis");

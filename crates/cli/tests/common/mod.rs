@@ -1,5 +1,10 @@
-//! Helpers shared by the CLI tests: run the built binary, find the repository's scenes.
+//! Helpers shared by the CLI tests: run the built binary, find the repository's scenes;
+//! those of the checkpoint tests in [`checkpoint`].
 #![allow(dead_code)]
+
+pub mod checkpoint;
+#[path = "../../../formats/tests/common/shared_scenes.rs"]
+pub mod shared_scenes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -4,7 +4,7 @@
 
 use mcrender_core::color::Rgb;
 use mcrender_core::material::DiffuseMaterial;
-use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
+use mcrender_core::math::{Mat4, Transform, Vec2, Vec3, PI};
 use mcrender_core::render::{render, RenderOptions, RenderOutput};
 use mcrender_core::scene::*;
 
@@ -81,18 +81,24 @@ pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
 
 /// A square of half-side `s` at height `h` above the origin, emitting `l` downwards.
 pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
+    let square = GeometryDesc::TriangleMesh(TriangleMeshDesc {
+        positions: vec![
+            Vec3::new(-s, h, -s),
+            Vec3::new(s, h, -s),
+            Vec3::new(s, h, s),
+            Vec3::new(-s, h, s),
+        ],
+        indices: vec![0, 1, 2, 0, 2, 3],
+        normals: None,
+        uvs: None,
+    });
+    add_emitter(d, square, l);
+}
+
+/// A shape of `geometry` (material 0, one-sided) emitting `l`.
+pub fn add_emitter(d: &mut SceneDescription, geometry: GeometryDesc, l: Rgb) {
     d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
-            positions: vec![
-                Vec3::new(-s, h, -s),
-                Vec3::new(s, h, -s),
-                Vec3::new(s, h, s),
-                Vec3::new(-s, h, s),
-            ],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            normals: None,
-            uvs: None,
-        }),
+        geometry,
         material: 0,
         area_light: Some(AreaLightDesc {
             radiance: l,
@@ -106,45 +112,24 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
 
 /// A sphere light of radius `r` at `centre`.
 pub fn add_sphere_light(d: &mut SceneDescription, r: f32, centre: Vec3, l: Rgb) {
-    d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::full_sphere(
-            1.0,
-            Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r))).unwrap(),
-        ),
-        material: 0,
-        area_light: Some(AreaLightDesc {
-            radiance: l,
-            two_sided: false,
-            power: None,
-        }),
-        flip_normals: false,
-        alpha: None,
-    });
+    let world_from_object = Transform::new(Mat4::from_translation(centre) * Mat4::from_scale(Vec3::splat(r))).unwrap();
+    add_emitter(d, GeometryDesc::full_sphere(1.0, world_from_object), l);
 }
 
 /// A disk of radius `r` at height `h` above the origin, emitting `l` downwards: object
 /// space `z` is mapped to world `-y` by a rotation, as a pbrt scene would place it.
 pub fn add_disk_light(d: &mut SceneDescription, r: f32, h: f32, l: Rgb) {
-    d.shapes.push(ShapeDesc {
-        geometry: GeometryDesc::Disk {
-            height: 0.0,
-            radius: r,
-            inner_radius: 0.0,
-            phi_max: 2.0 * std::f32::consts::PI,
-            world_from_object: Transform::new(
-                Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2),
-            )
-            .unwrap(),
-        },
-        material: 0,
-        area_light: Some(AreaLightDesc {
-            radiance: l,
-            two_sided: false,
-            power: None,
-        }),
-        flip_normals: false,
-        alpha: None,
-    });
+    let disk = GeometryDesc::Disk {
+        height: 0.0,
+        radius: r,
+        inner_radius: 0.0,
+        phi_max: 2.0 * std::f32::consts::PI,
+        world_from_object: Transform::new(
+            Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2),
+        )
+        .unwrap(),
+    };
+    add_emitter(d, disk, l);
 }
 
 /// A camera low beside the receiver, looking at its centre with a tiny field of view, so
@@ -227,4 +212,91 @@ pub fn square_light_irradiance(s: f32, h: f32, l: f32) -> f32 {
         (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f32::consts::PI)
     };
     std::f32::consts::PI * l * 4.0 * corner(s, s, h)
+}
+
+/// A closed sphere of `radius` and albedo `albedo` emitting `le` inwards, the camera at its
+/// centre: every point sees L from everywhere, so L = le + albedo L, L = le / (1 - albedo)
+/// (le (1 - albedo^(D+1)) / (1 - albedo) up to depth D).
+pub fn emissive_sphere(radius: f32, albedo: Rgb, le: Rgb) -> SceneDescription {
+    let emission = AreaLightDesc {
+        radiance: le,
+        two_sided: false,
+        power: None,
+    };
+    inside_sphere_scene(radius, albedo, Some(emission), true)
+}
+
+/// A diffuse sphere of radius 1 and albedo 1/2 with a point light of intensity
+/// `intensity` at its centre (where the camera is). With intensity pi the direct radiance
+/// is (a/pi)(I/r^2) = 1/2, and depth k carries 2^-k: L = 1 - 2^-D up to depth D, 1 in all.
+pub fn point_lit_sphere(intensity: f32) -> SceneDescription {
+    let mut d = inside_sphere_scene(1.0, Rgb::splat(0.5), None, false);
+    d.lights.push(LightDesc::Point {
+        position: Vec3::ZERO,
+        intensity: Rgb::splat(intensity),
+    });
+    d
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only (max depth 1), inside a sphere of radius 50 emitting `l` inwards (a uniform
+/// sky: the irradiance is pi l); and its radiance, rho l.
+pub fn receiver_under_sky(l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = emissive_sphere(50.0, Rgb::BLACK, Rgb::splat(l));
+    add_receiver(&mut d, rho);
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho * l))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a square light of half-side `s` at height `h` emitting `l`; and its
+/// radiance, rho / pi E with E from [`square_light_irradiance`].
+pub fn receiver_under_square_light(s: f32, h: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_square_light(&mut d, s, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho / PI * square_light_irradiance(s, h, l)))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a sphere light of radius `r` emitting `l` at distance `dist` above it:
+/// E = pi l (r/dist)^2, so the radiance is rho l (r/dist)^2.
+pub fn receiver_under_sphere_light(r: f32, dist: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_sphere_light(&mut d, r, Vec3::new(0.0, dist, 0.0), Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho * l * (r / dist) * (r / dist)))
+}
+
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, under a disk light of radius `r` at height `h` on its axis emitting `l`
+/// downwards: E = pi l r^2 / (r^2 + h^2), so the radiance is rho l r^2 / (r^2 + h^2).
+pub fn receiver_under_disk_light(r: f32, h: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    add_disk_light(&mut d, r, h, Rgb::splat(l));
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    (d, Rgb::splat(rho / PI * (PI * l * r * r / (r * r + h * h))))
+}
+
+/// Assert that an estimate `(mean, standard error)` per channel is `expected` within 4
+/// standard errors (and a relative 1e-5 for rounding).
+pub fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {
+    for c in 0..3 {
+        let e = f64::from(expected[c]);
+        let tol = 4.0 * se[c] + 1e-5 * e.abs().max(1e-3);
+        eprintln!("{label} channel {c}: {:.5} vs {e:.5} (se {:.2e})", mean[c], se[c]);
+        assert!(
+            (mean[c] - e).abs() <= tol,
+            "{label}, channel {c}: {:.5} vs closed form {e:.5} (standard error {:.2e})",
+            mean[c],
+            se[c]
+        );
+    }
 }
