@@ -26,10 +26,67 @@ pub fn parse_obj(
     options: &tobj::LoadOptions,
     mtl: impl Fn(&Path) -> Option<Vec<u8>>,
 ) -> Result<ParsedObj, tobj::LoadError> {
+    check_face_indices(obj)?;
     tobj::load_obj_buf(&mut std::io::Cursor::new(obj), options, |name| {
         let bytes = mtl(name).ok_or(tobj::LoadError::OpenFileFailed)?;
         tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize_mtl(&bytes)))
     })
+}
+
+/// The lines tobj reads: up to the first one that is not UTF-8, where it stops with an error.
+fn obj_lines(obj: &[u8]) -> impl Iterator<Item = &str> {
+    obj.split(|b| *b == b'\n').map_while(|l| std::str::from_utf8(l).ok())
+}
+
+/// Every index of every `f` and `l` element within range: `1..=n` for the file's `n`
+/// positions, texture coordinates or normals, or `-1..=-m` for the `m` defined so far.
+/// tobj 4.0.5 turns index 0 and indices below `-m` into huge values and multiplies them
+/// unchecked, an overflow panic with overflow checks on and a wrapped index without (found
+/// by the `obj` fuzz target: `f 1/1/-11` with one normal).
+fn check_face_indices(obj: &[u8]) -> Result<(), tobj::LoadError> {
+    const KINDS: [&str; 3] = ["v", "vt", "vn"];
+    let mut total = [0i64; 3];
+    for line in obj_lines(obj) {
+        if let Some(k) = line
+            .split_whitespace()
+            .next()
+            .and_then(|w| KINDS.iter().position(|k| *k == w))
+        {
+            total[k] += 1;
+        }
+    }
+    let errors = [
+        tobj::LoadError::FaceVertexOutOfBounds,
+        tobj::LoadError::FaceTexCoordOutOfBounds,
+        tobj::LoadError::FaceNormalOutOfBounds,
+    ];
+    let mut so_far = [0i64; 3];
+    for line in obj_lines(obj) {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some(w) if KINDS.contains(&w) => {
+                so_far[KINDS.iter().position(|k| *k == w).unwrap_or(0)] += 1;
+            }
+            Some("f" | "l") => {
+                for vertex in words {
+                    for (k, index) in vertex.split('/').take(3).enumerate() {
+                        // Empty (`1//3`) or unparsable parts are tobj's to report.
+                        let Ok(i) = index.parse::<i64>() else { continue };
+                        let valid = if i < 0 {
+                            i.checked_neg().is_some_and(|m| m <= so_far[k])
+                        } else {
+                            i >= 1 && i <= total[k]
+                        };
+                        if !valid {
+                            return Err(errors[k]);
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// MTL text with colour lines of fewer than three values (`Kd 0.5`, valid MTL for a grey)
@@ -147,5 +204,35 @@ mod tests {
         let path = dir.path().join("bad.obj");
         std::fs::write(&path, "v 0 0 0\nf 1 2 3\n").unwrap();
         assert!(read_obj_mesh(&path, &crate::source::DiskFiles).is_err());
+    }
+
+    /// Found by the `obj` fuzz target (session 6): `f 1/1/-11` with one normal made tobj
+    /// compute a huge normal index and multiply it unchecked (a panic with overflow checks).
+    #[test]
+    fn regression_out_of_range_face_indices_are_errors_before_tobj() {
+        let options = tobj::LoadOptions {
+            single_index: true,
+            triangulate: true,
+            ..tobj::LoadOptions::default()
+        };
+        let head = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\n";
+        let parse = |faces: &str| parse_obj(format!("{head}{faces}").as_bytes(), &options, |_| None).map(|_| ());
+        assert!(parse("f 1/1/1 2/1/1 3/1/1\n").is_ok());
+        assert!(parse("f -3/-1/-1 -2/-1/-1 -1/-1/-1\n").is_ok());
+        for bad in [
+            "f 1/1/-11 2/1/1 3/1/1\n",
+            "f 1/1/1 2/1/1 3/1/2\n",
+            "f 0 2 3\n",
+            "f -4 2 3\n",
+            "f 1/2 2/1 3/1\n",
+            "f 1 2 9223372036854775807\n",
+            "f 1 2 -9223372036854775808\n",
+            "l 1 5\n",
+        ] {
+            // Checked here, not left to tobj (which, without overflow checks, often wraps
+            // into an error of its own, and sometimes into an in-range index).
+            assert!(check_face_indices(format!("{head}{bad}").as_bytes()).is_err(), "{bad}");
+            assert!(parse(bad).is_err(), "{bad}");
+        }
     }
 }
