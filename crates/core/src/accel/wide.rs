@@ -12,6 +12,8 @@
 //! Any-hit traversal stops at the first blocker. As [`super::Bvh`], the tree knows
 //! primitives by index and bounds only; queries take a closure testing one primitive.
 
+use rayon::prelude::*;
+
 use super::simd::{self, Isa};
 use super::tri_block::{self, RayTriangles, TriBlock, TriangleHit};
 use super::wide_build::{self, BuildNode, MAX_DEPTH};
@@ -155,7 +157,9 @@ impl WideBvh {
             return Self::default();
         }
         let mut prims = wide_build::build_prims(bounds);
-        let tree = wide_build::build(&mut prims, 0, 0, wide_build::Costs::for_count(bounds.len()));
+        let costs = wide_build::Costs::for_count(bounds.len());
+        let all = wide_build::bounds_of(&prims);
+        let tree = wide_build::build(&mut prims, 0, 0, costs, all);
         let mut bvh = Self {
             nodes: Vec::with_capacity(bounds.len() / 2 + 1),
             prim_indices: prims.iter().map(|p| p.index).collect(),
@@ -177,25 +181,39 @@ impl WideBvh {
             BuildNode::Inner { children, .. } => children,
         };
         self.stack_size = self.stack_size.max(1 + (WIDTH - 1) * level).min(MAX_STACK);
-        // Open the inner child of largest surface area until there are four.
-        let mut lanes: Vec<&BuildNode> = vec![&children[0], &children[1]];
-        while lanes.len() < WIDTH {
-            let widest = lanes
-                .iter()
-                .enumerate()
-                .filter(|(_, n)| matches!(n, BuildNode::Inner { .. }))
-                .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()))
-                .map(|(i, _)| i);
+        // Open the inner child of largest surface area until there are four (kept in a
+        // fixed array with their areas: this runs once per node).
+        let area = |n: &BuildNode| match n {
+            BuildNode::Inner { bounds, .. } => bounds.surface_area(),
+            BuildNode::Leaf { .. } => f32::NEG_INFINITY,
+        };
+        let mut lanes: [(&BuildNode, f32); WIDTH] = [(&children[0], 0.0); WIDTH];
+        lanes[0] = (&children[0], area(&children[0]));
+        lanes[1] = (&children[1], area(&children[1]));
+        let mut len = 2;
+        while len < WIDTH {
+            // The first of the largest, as `Iterator::max_by` picks the last: scan backwards.
+            let mut widest = None;
+            for i in (0..len).rev() {
+                if matches!(lanes[i].0, BuildNode::Inner { .. })
+                    && widest.is_none_or(|w: usize| lanes[i].1.total_cmp(&lanes[w].1).is_gt())
+                {
+                    widest = Some(i);
+                }
+            }
             let Some(i) = widest else { break };
-            let BuildNode::Inner { children, .. } = lanes.swap_remove(i) else {
-                unreachable!("filtered to inner nodes")
+            let BuildNode::Inner { children, .. } = lanes[i].0 else {
+                unreachable!("chosen among inner nodes")
             };
-            lanes.push(&children[0]);
-            lanes.push(&children[1]);
+            // As `Vec::swap_remove` then two pushes.
+            lanes[i] = lanes[len - 1];
+            lanes[len - 1] = (&children[0], area(&children[0]));
+            lanes[len] = (&children[1], area(&children[1]));
+            len += 1;
         }
         let index = self.nodes.len();
         self.nodes.push(WideNode::EMPTY);
-        for (i, lane) in lanes.into_iter().enumerate() {
+        for (i, &(lane, _)) in lanes[..len].iter().enumerate() {
             let b = lane.bounds();
             let (child, count) = match lane {
                 BuildNode::Leaf { start, count, .. } => (*start, *count),
@@ -283,30 +301,68 @@ impl WideBvh {
     /// `triangle(prim)` gives primitive `prim`'s vertex positions, or `None` when it must be
     /// tested by the query's closure (another shape, an alpha cut-out, a surface shadow rays
     /// skip). Call after [`Self::reorder_by_leaves`], with the reordered primitives.
-    pub fn attach_triangles(&mut self, triangle: impl Fn(u32) -> Option<[Vec3; 3]>) {
-        let mut blocks = std::mem::take(&mut self.blocks);
-        let mut attach = |child: &mut u32, count: &mut u32| {
-            if *count == INNER || *count & BLOCK != 0 || *count == 0 {
-                return;
+    pub fn attach_triangles(&mut self, triangle: impl Fn(u32) -> Option<[Vec3; 3]> + Sync) {
+        // The leaves in order (root first, then the nodes' lanes, `WIDTH * node + lane`);
+        // which of them get blocks is decided in parallel, then numbered in that order, so
+        // no block's index depends on the threads; then the blocks are made in parallel.
+        const ROOT: u32 = u32::MAX;
+        let is_plain_leaf = |count: u32| count != INNER && count & BLOCK == 0 && count != 0;
+        let mut leaves: Vec<(u32, u32, u32)> = Vec::with_capacity(self.nodes.len() * WIDTH + 1);
+        if let Some((child, count)) = self.root {
+            if is_plain_leaf(count) {
+                leaves.push((ROOT, child, count));
             }
-            let start = *child as usize;
-            let prims = &self.prim_indices[start..start + *count as usize];
-            let tris: Option<Vec<[Vec3; 3]>> = prims.iter().map(|&p| triangle(p)).collect();
-            if let Some(tris) = tris {
-                *child = blocks.len() as u32;
-                *count |= BLOCK;
-                blocks.push(TriBlock::new(start as u32, &tris));
-            }
-        };
-        if let Some((child, count)) = &mut self.root {
-            attach(child, count);
         }
-        for node in &mut self.nodes {
+        for (n, node) in self.nodes.iter().enumerate() {
             for i in 0..WIDTH {
-                attach(&mut node.child[i], &mut node.count[i]);
+                if is_plain_leaf(node.count[i]) {
+                    leaves.push(((WIDTH * n + i) as u32, node.child[i], node.count[i]));
+                }
             }
         }
-        self.blocks = blocks;
+        let prim_indices = &self.prim_indices;
+        let prims_of = |child: u32, count: u32| {
+            let start = child as usize;
+            prim_indices
+                .get(start..start + count as usize)
+                .filter(|p| p.len() <= tri_block::LANES)
+        };
+        let all_triangles: Vec<bool> = leaves
+            .par_iter()
+            .map(|&(_, child, count)| prims_of(child, count).is_some_and(|p| p.iter().all(|&p| triangle(p).is_some())))
+            .collect();
+        let first = self.blocks.len() as u32;
+        leaves.retain({
+            let mut yes = all_triangles.iter();
+            move |_| yes.next().copied().unwrap_or(false)
+        });
+        for (k, &(at, _, _)) in leaves.iter().enumerate() {
+            let (child, count) = if at == ROOT {
+                self.root.as_mut().map(|(c, n)| (c, n)).expect("a leaf root")
+            } else {
+                let node = &mut self.nodes[at as usize / WIDTH];
+                let i = at as usize % WIDTH;
+                (&mut node.child[i], &mut node.count[i])
+            };
+            *child = first + k as u32;
+            *count |= BLOCK;
+        }
+        let blocks: Vec<TriBlock> = leaves
+            .par_iter()
+            .map(|&(_, child, count)| {
+                let prims = prims_of(child, count).expect("checked above");
+                let mut tris = [[Vec3::ZERO; 3]; tri_block::LANES];
+                for (t, &p) in tris.iter_mut().zip(prims) {
+                    *t = triangle(p).expect("checked above");
+                }
+                TriBlock::new(child, &tris[..prims.len()])
+            })
+            .collect();
+        if self.blocks.is_empty() {
+            self.blocks = blocks;
+        } else {
+            self.blocks.extend(blocks);
+        }
     }
 
     /// Leaves whose triangles are precomputed by [`Self::attach_triangles`].

@@ -48,21 +48,23 @@ pub fn next_float_down(v: f32) -> f32 {
 /// to) by the projection of the error box onto `n`, then rounded away from the surface so
 /// the new origin is certainly on the correct side (pbrt-v4 `OffsetRayOrigin`).
 #[must_use]
+#[inline]
 pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     let d = n.abs().dot(p_error);
     let mut offset = d * n;
     if w.dot(n) < 0.0 {
         offset = -offset;
     }
-    let mut po = p + offset;
-    for i in 0..3 {
-        if offset[i] > 0.0 {
-            po[i] = next_float_up(po[i]);
-        } else if offset[i] < 0.0 {
-            po[i] = next_float_down(po[i]);
+    // On arrays: indexing a vector by a loop variable went through memory.
+    let mut po = (p + offset).to_array();
+    for (po, o) in po.iter_mut().zip(offset.to_array()) {
+        if o > 0.0 {
+            *po = next_float_up(*po);
+        } else if o < 0.0 {
+            *po = next_float_down(*po);
         }
     }
-    po
+    Vec3::from_array(po)
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ pub use mis::{balance_heuristic, power_heuristic};
 pub use mlt::MltSampler;
 pub use rng::Pcg32;
 pub use sampler::{IndependentSampler, OwenSobolSampler, Sampler, SamplerDesc, SamplerKind, StratifiedSampler};
-pub use scramble::{nested_uniform_scramble, permutation_element};
+pub use scramble::{nested_uniform_scramble, nested_uniform_scramble_reversed, permutation_element};
 pub use source::SampleSource;
 pub use warp::*;
 

@@ -67,6 +67,15 @@ pub fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
     laine_karras_permutation(x.reverse_bits(), seed).reverse_bits()
 }
 
+/// [`nested_uniform_scramble`] of the value whose bit reversal is `x_reversed`, for callers
+/// that have the reversed digits at hand (the Sobol' sampler builds them directly), so one
+/// of the two bit reversals is saved.
+#[inline]
+#[must_use]
+pub fn nested_uniform_scramble_reversed(x_reversed: u32, seed: u32) -> u32 {
+    laine_karras_permutation(x_reversed, seed).reverse_bits()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -144,19 +144,25 @@ impl Triangle {
     /// light samples need no tangents).
     #[inline]
     fn geometry_at(&self, b: [f32; 3]) -> (Interaction, Vec2, Vec3, [Vec2; 3]) {
-        let [i0, i1, i2] = self.mesh.vertices(self.index);
         let [p0, p1, p2] = self.positions();
+        // The vertex indices are read only for uvs or normals (a mesh without either, such
+        // as the Cornell box's, needs nothing from the mesh here).
+        let vertices = || self.mesh.vertices(self.index);
         let p = b[0] * p0 + b[1] * p1 + b[2] * p2;
         // Error of the barycentric interpolation (pbrt-v4 eq. 6.30).
         let p_error = gamma(7) * ((b[0] * p0).abs() + (b[1] * p1).abs() + (b[2] * p2).abs());
         let uvs = match &self.mesh.uvs {
-            Some(uv) => [uv[i0], uv[i1], uv[i2]],
+            Some(uv) => {
+                let [i0, i1, i2] = vertices();
+                [uv[i0], uv[i1], uv[i2]]
+            }
             None => [Vec2::ZERO, Vec2::X, Vec2::ONE],
         };
         let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
         let mut n = (p0 - p2).cross(p1 - p2).normalize();
         let ns = match &self.mesh.normals {
             Some(normals) => {
+                let [i0, i1, i2] = vertices();
                 let ns = b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2];
                 // The geometric normal follows the shading normal's side when one is given.
                 match ns.try_normalize() {

@@ -2,7 +2,7 @@
 //! unscrambled Sobol' sequence, stratification and net properties, and lower integration
 //! error than independent sampling on smooth integrands.
 
-use super::sobol::{sobol_u32, SOBOL_DIMENSIONS};
+use super::sobol::{sobol_u32, sobol_u32_reversed, SOBOL_DIMENSIONS};
 use super::Sampler;
 use super::{SamplerDesc, SamplerKind};
 use crate::math::UVec2;
@@ -25,6 +25,29 @@ fn stratified(x_samples: u32, y_samples: u32) -> SamplerKind {
 
 fn unit(x: u32) -> f64 {
     f64::from(x) / 4_294_967_296.0
+}
+
+/// The nibble tables give the bit-by-bit points, reversed, in every dimension: for the
+/// single bits (each column), small indices and scrambled-looking ones.
+#[test]
+fn sobol_tables_match_the_matrices() {
+    let mut x = 0x9e37_79b9u32;
+    for dim in 0..SOBOL_DIMENSIONS {
+        let singles = (0..32).map(|b| 1u32 << b);
+        let hashed = (0..2000).map(|_| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        });
+        for index in (0..256).chain(singles).chain(hashed).chain([u32::MAX]) {
+            assert_eq!(
+                sobol_u32_reversed(index, dim),
+                sobol_u32(index, dim).reverse_bits(),
+                "dim {dim} index {index}"
+            );
+        }
+    }
 }
 
 #[test]
