@@ -37,6 +37,7 @@ const EXPECTED_PASS: &[&str] = &[
     "test_directional_direct",
     "test_instancing_path",
     "test_texture_interp_direct",
+    "test_spot_direct",
 ];
 
 /// Mitsuba's significance level before the Sidak correction.

@@ -383,3 +383,28 @@ fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
     let e = err("<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture></bsdf>");
     assert!(e.message.contains("nested bsdf"), "{e}");
 }
+
+/// `spot`: Mitsuba's falloff, its angles in degrees (beam width 3/4 of the cutoff by
+/// default), uniform light selection for Mitsuba scenes, and bad angles as errors.
+#[test]
+fn spot_is_mitsubas_linear_falloff() {
+    use mcrender_core::scene::{LightSelection, SpotFalloff};
+    let s = load_text(
+        "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"2, 3, 4\"/>\
+         <float name=\"cutoff_angle\" value=\"40\"/></emitter>",
+    )
+    .unwrap();
+    let LightDesc::Spot(spot) = &s.description.lights[0] else {
+        panic!("{:?}", s.description.lights)
+    };
+    assert_eq!(spot.falloff, SpotFalloff::LinearAngle);
+    assert_eq!(spot.intensity, Rgb::new(2.0, 3.0, 4.0));
+    assert!((spot.cos_falloff_end - 40f32.to_radians().cos()).abs() < 1e-6);
+    assert!((spot.cos_falloff_start - 30f32.to_radians().cos()).abs() < 1e-6);
+    assert!(spot.projection.is_none());
+    assert_eq!(s.description.integrator.light_selection, LightSelection::Uniform);
+    let e = err("<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"10\"/>\
+         <float name=\"beam_width\" value=\"20\"/></emitter>");
+    assert_eq!(e.kind, SceneErrorKind::Invalid, "{e}");
+    assert!(e.message.contains("beam_width"), "{e}");
+}

@@ -11,8 +11,8 @@ use std::sync::Arc;
 use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
-    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MaterialDesc, MaterialId,
-    RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
+    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection, MaterialDesc,
+    MaterialId, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
 };
 use mcrender_core::texture::FloatTexture;
 
@@ -89,6 +89,7 @@ impl Builder {
             },
             integrator: IntegratorDesc {
                 max_depth: UNLIMITED_DEPTH,
+                light_selection: LightSelection::Uniform,
                 ..IntegratorDesc::default()
             },
             materials: Vec::new(),
@@ -423,7 +424,11 @@ impl Builder {
                 if p.bool("hide_emitters", false)? {
                     return Err(SceneError::unsupported(&el.loc, "\"hide_emitters\" = true"));
                 }
-                let mut d = IntegratorDesc::default();
+                // Mitsuba chooses emitters uniformly (`Scene::sample_emitter`).
+                let mut d = IntegratorDesc {
+                    light_selection: LightSelection::Uniform,
+                    ..IntegratorDesc::default()
+                };
                 if kind == "direct" {
                     d.kind = IntegratorKind::Direct;
                     d.max_depth = 1;
