@@ -38,6 +38,9 @@ const EXPECTED_PASS: &[&str] = &[
     "test_instancing_path",
     "test_texture_interp_direct",
     "test_spot_direct",
+    "test_mesh_attributes_1_face_direct",
+    "test_mesh_attributes_3_face_direct",
+    "test_mesh_attributes_3_vertex_direct",
 ];
 
 /// Mitsuba's significance level before the Sidak correction.

@@ -68,6 +68,14 @@ pub struct Builder {
     pub limits: LoadLimits,
     /// Estimated bytes of the images read so far (`crate::limits` estimates).
     pub image_bytes: u64,
+    /// The attributes of the shape whose BSDF is being built (`mesh_attribute` textures
+    /// read them), if any.
+    pub mesh_attributes: Option<super::attributes::MeshAttributes>,
+    /// Set when a `mesh_attribute` was met with no [`Self::mesh_attributes`].
+    pub deferred_attribute: bool,
+    /// BSDFs built with placeholder mesh attributes: material -> the `<bsdf>` to build
+    /// again for each shape that uses it.
+    pub attribute_bsdfs: HashMap<MaterialId, Element>,
 }
 
 impl Builder {
@@ -108,6 +116,9 @@ impl Builder {
             default_material: None,
             limits,
             image_bytes: 0,
+            mesh_attributes: None,
+            deferred_attribute: false,
+            attribute_bsdfs: HashMap::new(),
         }
     }
 
