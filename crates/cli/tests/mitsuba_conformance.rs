@@ -37,6 +37,10 @@ const EXPECTED_PASS: &[&str] = &[
     "test_directional_direct",
     "test_instancing_path",
     "test_texture_interp_direct",
+    "test_spot_direct",
+    "test_mesh_attributes_1_face_direct",
+    "test_mesh_attributes_3_face_direct",
+    "test_mesh_attributes_3_vertex_direct",
 ];
 
 /// Mitsuba's significance level before the Sidak correction.

@@ -11,7 +11,7 @@ use mcrender_core::light::Light;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3, PI};
 use mcrender_core::sampling::equal_area_square_to_sphere;
 use mcrender_core::scene::{
-    AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, Scene, SpotLightDesc,
+    AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, Scene, SpotFalloff, SpotLightDesc,
 };
 
 /// The receiver (normal +y) seen by a narrow camera, direct lighting only.
@@ -170,9 +170,38 @@ fn spot_light_irradiance_follows_the_falloff() {
             intensity: i,
             cos_falloff_start: start.cos(),
             cos_falloff_end: end.cos(),
+            falloff: SpotFalloff::SmoothCosine,
+            projection: None,
         }));
         let t = ((alpha.cos() - end.cos()) / (start.cos() - end.cos())).clamp(0.0, 1.0);
         let falloff = t * t * (3.0 - 2.0 * t);
+        eprintln!("alpha {alpha_deg}: falloff {falloff}");
+        assert_mean_radiance(&d, i * (rho / PI * falloff / 1e4));
+    }
+}
+
+/// Mitsuba 3's spot (linear in angle), set up as the test above: E = I falloff(alpha) /
+/// 100^2 with falloff 1 inside the beam width, `(end - alpha) / (end - start)` in the
+/// ramp and 0 beyond the cutoff.
+#[test]
+fn mitsuba_spot_irradiance_ramps_linearly_in_angle() {
+    let (rho, i) = (0.8, Rgb::new(1e4, 2e4, 5e3));
+    let (start, end) = (15.0f32.to_radians(), 30.0f32.to_radians());
+    for alpha_deg in [10.0f32, 18.0, 26.0, 35.0] {
+        let alpha = alpha_deg.to_radians();
+        let m = Mat4::from_translation(Vec3::new(0.0, 100.0, 0.0))
+            * Mat4::from_rotation_x(alpha)
+            * Mat4::from_rotation_x(PI / 2.0);
+        let mut d = receiver_scene(rho, 16);
+        d.lights.push(LightDesc::Spot(SpotLightDesc {
+            world_from_light: Transform::new(m).unwrap(),
+            intensity: i,
+            cos_falloff_start: start.cos(),
+            cos_falloff_end: end.cos(),
+            falloff: SpotFalloff::LinearAngle,
+            projection: None,
+        }));
+        let falloff = ((end - alpha) / (end - start)).clamp(0.0, 1.0);
         eprintln!("alpha {alpha_deg}: falloff {falloff}");
         assert_mean_radiance(&d, i * (rho / PI * falloff / 1e4));
     }

@@ -162,6 +162,8 @@ fn variants() -> Vec<(&'static str, SceneDescription)> {
         intensity: Rgb::splat(5.0),
         cos_falloff_start: 25f32.to_radians().cos(),
         cos_falloff_end: 35f32.to_radians().cos(),
+        falloff: SpotFalloff::SmoothCosine,
+        projection: None,
     }));
     v.push(("spot light", d));
 

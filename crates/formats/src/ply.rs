@@ -8,6 +8,9 @@
 //!   counted (pbrt skips them too). pbrt-v4 instead makes each quad a bilinear patch
 //!   (p00 p10 p01 p11 = 0 1 3 2): the same surface for planar quads, whose triangles are
 //!   exactly our two; a non-planar quad is curved there and two flat triangles here;
+//! * other scalar properties of vertices and faces are kept by name, in the header's order
+//!   ([`PlyMesh::vertex_attributes`], [`PlyMesh::face_attributes`], a quad's value going to
+//!   both its triangles), for Mitsuba's mesh attributes;
 //! * any other element is read and ignored.
 //!
 //! Vertex data must be finite and indices in range; anything else is a [`PlyError`].
@@ -32,6 +35,10 @@ pub struct PlyMesh {
     pub indices: Vec<u32>,
     /// Faces with fewer than 3 or more than 4 vertices, which were skipped.
     pub skipped_faces: usize,
+    /// Other scalar vertex properties: name and one value per vertex.
+    pub vertex_attributes: Vec<(String, Vec<f32>)>,
+    /// Other scalar face properties: name and one value per triangle of [`Self::indices`].
+    pub face_attributes: Vec<(String, Vec<f32>)>,
 }
 
 /// Why a PLY file could not be read.
@@ -81,14 +88,27 @@ pub fn read_ply_bytes(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
     let mut vertices: Option<Vec<Vertex>> = None;
     let mut faces: Option<Vec<Face>> = None;
     let mut has = VertexLayout::default();
+    let mut extra_names = (Vec::new(), Vec::new());
     for (name, def) in &header.elements {
         match name.as_str() {
             "vertex" => {
                 has = VertexLayout::from_names(def.properties.keys().map(String::as_str));
+                extra_names.0 = def
+                    .properties
+                    .values()
+                    .filter(|p| is_scalar(p) && !is_vertex_reserved(&p.name))
+                    .map(|p| p.name.clone())
+                    .collect();
                 let read = vertex_parser.read_payload_for_element(&mut reader, def, &header);
                 vertices = Some(read.map_err(|e| format_error("cannot read the vertices", &e))?);
             }
             "face" => {
+                extra_names.1 = def
+                    .properties
+                    .values()
+                    .filter(|p| is_scalar(p))
+                    .map(|p| p.name.clone())
+                    .collect();
                 let read = face_parser.read_payload_for_element(&mut reader, def, &header);
                 faces = Some(read.map_err(|e| format_error("cannot read the faces", &e))?);
             }
@@ -104,7 +124,22 @@ pub fn read_ply_bytes(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
     if !has.position {
         return Err(PlyError::Format("the vertices have no x, y, z properties".into()));
     }
-    build_mesh(&vertices, &faces, &has)
+    build_mesh(&vertices, &faces, &has, &extra_names)
+}
+
+/// True for a property holding one number (not a list).
+fn is_scalar(p: &ply_rs::ply::PropertyDef) -> bool {
+    matches!(p.data_type, ply_rs::ply::PropertyType::Scalar(_))
+}
+
+/// Vertex properties with a meaning of their own (position, normal, texture coordinates).
+fn is_vertex_reserved(name: &str) -> bool {
+    matches!(name, "x" | "y" | "z" | "nx" | "ny" | "nz") || UV_NAMES.iter().any(|(u, v)| name == *u || name == *v)
+}
+
+/// The value of the extra property `name` of an element (0 when absent or not a scalar).
+fn extra_value(extra: &[(String, f32)], name: &str) -> f32 {
+    extra.iter().find(|(n, _)| n == name).map_or(0.0, |(_, v)| *v)
 }
 
 fn format_error(what: &str, err: &std::io::Error) -> PlyError {
@@ -218,11 +253,13 @@ impl VertexLayout {
 }
 
 /// One vertex: position, normal and the four candidate uv pairs.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 struct Vertex {
     p: [f64; 3],
     n: [f64; 3],
     uv: [[f64; 2]; 4],
+    /// Other scalar properties.
+    extra: Vec<(String, f32)>,
 }
 
 fn scalar(p: &Property) -> Option<f64> {
@@ -254,12 +291,18 @@ impl PropertyAccess for Vertex {
             "ny" => self.n[1] = v,
             "nz" => self.n[2] = v,
             other => {
+                let mut uv = false;
                 for (i, (u, w)) in UV_NAMES.iter().enumerate() {
                     if other == *u {
                         self.uv[i][0] = v;
+                        uv = true;
                     } else if other == *w {
                         self.uv[i][1] = v;
+                        uv = true;
                     }
+                }
+                if !uv {
+                    self.extra.push((name, v as f32));
                 }
             }
         }
@@ -270,6 +313,8 @@ impl PropertyAccess for Vertex {
 #[derive(Clone, Debug, Default)]
 struct Face {
     indices: Option<Vec<i64>>,
+    /// Other scalar properties.
+    extra: Vec<(String, f32)>,
 }
 
 impl PropertyAccess for Face {
@@ -279,6 +324,9 @@ impl PropertyAccess for Face {
 
     fn set_property(&mut self, name: String, property: Property) {
         if name != "vertex_indices" && name != "vertex_index" {
+            if let Some(v) = scalar(&property) {
+                self.extra.push((name, v as f32));
+            }
             return;
         }
         self.indices = match property {
@@ -311,7 +359,12 @@ fn finite_vec3(v: [f64; 3], what: &str, i: usize) -> Result<Vec3, PlyError> {
     }
 }
 
-fn build_mesh(vertices: &[Vertex], faces: &[Face], has: &VertexLayout) -> Result<PlyMesh, PlyError> {
+fn build_mesh(
+    vertices: &[Vertex],
+    faces: &[Face],
+    has: &VertexLayout,
+    extra_names: &(Vec<String>, Vec<String>),
+) -> Result<PlyMesh, PlyError> {
     let positions = vertices
         .iter()
         .enumerate()
@@ -360,27 +413,51 @@ fn build_mesh(vertices: &[Vertex], faces: &[Face], has: &VertexLayout) -> Result
     };
     let mut indices = Vec::with_capacity(faces.len() * 3);
     let mut skipped_faces = 0;
+    let mut face_attributes: Vec<(String, Vec<f32>)> = extra_names.1.iter().map(|n| (n.clone(), Vec::new())).collect();
     for (f, face) in faces.iter().enumerate() {
         let Some(ix) = &face.indices else {
             return Err(PlyError::Format(format!(
                 "face {f} has no integer \"vertex_indices\" (or \"vertex_index\") list"
             )));
         };
-        match ix[..] {
-            [a, b, c] => indices.extend([index(a)?, index(b)?, index(c)?]),
+        let triangles = match ix[..] {
+            [a, b, c] => {
+                indices.extend([index(a)?, index(b)?, index(c)?]);
+                1
+            }
             [a, b, c, d] => {
                 let (a, b, c, d) = (index(a)?, index(b)?, index(c)?, index(d)?);
                 indices.extend([a, b, c, a, c, d]);
+                2
             }
-            _ => skipped_faces += 1,
+            _ => {
+                skipped_faces += 1;
+                0
+            }
+        };
+        for (name, values) in &mut face_attributes {
+            let v = extra_value(&face.extra, name);
+            values.extend(std::iter::repeat_n(v, triangles));
         }
     }
+    let vertex_attributes = extra_names
+        .0
+        .iter()
+        .map(|name| {
+            (
+                name.clone(),
+                vertices.iter().map(|v| extra_value(&v.extra, name)).collect(),
+            )
+        })
+        .collect();
     Ok(PlyMesh {
         positions,
         normals,
         uvs,
         indices,
         skipped_faces,
+        vertex_attributes,
+        face_attributes,
     })
 }
 
@@ -389,6 +466,29 @@ mod tests {
     use super::*;
 
     const ASCII_QUAD: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n5 0 1 2 3 0\n";
+
+    /// Extra scalar properties are kept by name and in order; a quad's face value goes to
+    /// both of its triangles; lists other than the indices are not attributes.
+    #[test]
+    fn extra_properties_become_attributes() {
+        let src = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+                   property float color_0\nproperty uchar q\nelement face 2\nproperty list uchar int vertex_indices\n\
+                   property float weight\nproperty list uchar int other\nend_header\n\
+                   0 0 0 0.5 1\n1 0 0 0.25 2\n1 1 0 0.125 3\n0 1 0 1 4\n4 0 1 2 3 0.75 0\n3 0 1 2 0.5 1 7\n";
+        let m = read_ply_bytes(src.as_bytes()).unwrap();
+        assert_eq!(m.indices.len(), 9);
+        assert_eq!(
+            m.vertex_attributes,
+            [
+                ("color_0".to_string(), vec![0.5, 0.25, 0.125, 1.0]),
+                ("q".to_string(), vec![1.0, 2.0, 3.0, 4.0])
+            ]
+        );
+        assert_eq!(m.face_attributes, [("weight".to_string(), vec![0.75, 0.75, 0.5])]);
+        // Files without extras have none.
+        let plain = read_ply_bytes(ASCII_QUAD.as_bytes()).unwrap();
+        assert!(plain.vertex_attributes.is_empty() && plain.face_attributes.is_empty());
+    }
 
     #[test]
     fn ply_rs_debug_dumps_are_not_shown() {

@@ -433,3 +433,107 @@ fn serialized_meshes_load_by_shape_index_and_bad_ones_are_errors() {
     assert!(e.contains("expected the serialized format tag"), "{e}");
     assert!(bad("0", "missing.serialized").contains("cannot read"));
 }
+
+/// `spot`: Mitsuba's falloff, its angles in degrees (beam width 3/4 of the cutoff by
+/// default), uniform light selection for Mitsuba scenes, and bad angles as errors.
+#[test]
+fn spot_is_mitsubas_linear_falloff() {
+    use mcrender_core::scene::{LightSelection, SpotFalloff};
+    let s = load_text(
+        "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"2, 3, 4\"/>\
+         <float name=\"cutoff_angle\" value=\"40\"/></emitter>",
+    )
+    .unwrap();
+    let LightDesc::Spot(spot) = &s.description.lights[0] else {
+        panic!("{:?}", s.description.lights)
+    };
+    assert_eq!(spot.falloff, SpotFalloff::LinearAngle);
+    assert_eq!(spot.intensity, Rgb::new(2.0, 3.0, 4.0));
+    assert!((spot.cos_falloff_end - 40f32.to_radians().cos()).abs() < 1e-6);
+    assert!((spot.cos_falloff_start - 30f32.to_radians().cos()).abs() < 1e-6);
+    assert!(spot.projection.is_none());
+    assert_eq!(s.description.integrator.light_selection, LightSelection::Uniform);
+    let e = err("<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"10\"/>\
+         <float name=\"beam_width\" value=\"20\"/></emitter>");
+    assert_eq!(e.kind, SceneErrorKind::Invalid, "{e}");
+    assert!(e.message.contains("beam_width"), "{e}");
+}
+
+/// A PLY with a vertex colour and a face weight, two triangles.
+const ATTRIBUTE_PLY: &str =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+property float color_0\nproperty float color_1\nproperty float color_2\nelement face 2\n\
+property list uchar int vertex_indices\nproperty float weight_0\nend_header\n\
+0 0 0 1 0 0\n1 0 0 0 1 0\n1 1 0 0 0 1\n0 1 0 1 1 1\n3 0 1 2 0.25\n3 0 2 3 0.75\n";
+
+/// `mesh_attribute`: a BSDF declared once is built per PLY shape with that shape's data
+/// (vertex values with the mesh's indices, face values per triangle); a `blendbsdf` of two
+/// diffuse BSDFs is a diffuse with the blended reflectance; misuse is an error naming the
+/// attribute.
+#[test]
+fn mesh_attributes_bind_to_each_ply_shape() {
+    use mcrender_core::scene::DiffuseMaterial;
+    use mcrender_core::texture::{AttributeRate, Texture};
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "m.ply", ATTRIBUTE_PLY);
+    let body = r#"<texture type="mesh_attribute" id="w"><string name="name" value="face_weight"/></texture>
+<bsdf type="diffuse" id="vc"><texture type="mesh_attribute" name="reflectance"><string name="name" value="vertex_color"/>
+  <float name="scale" value="0.5"/></texture></bsdf>
+<bsdf type="blendbsdf" id="blend"><ref name="weight" id="w"/>
+  <bsdf type="diffuse"><rgb name="reflectance" value="0.2"/></bsdf><bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></bsdf>
+<shape type="ply"><string name="filename" value="m.ply"/><ref id="vc"/></shape>
+<shape type="ply"><string name="filename" value="m.ply"/><ref id="blend"/></shape>"#;
+    let p = write(dir.path(), "s.xml", &scene(body));
+    let s = load(&p).unwrap();
+    let d = &s.description;
+    let material = |i: usize| &d.materials[d.shapes[i].material as usize];
+    let MaterialDesc::Diffuse(DiffuseMaterial {
+        reflectance: Texture::MeshAttribute(t),
+    }) = material(0)
+    else {
+        panic!("{:?}", material(0))
+    };
+    assert_eq!(t.scale, 0.5);
+    assert_eq!(t.values[1], Rgb::new(0.0, 1.0, 0.0));
+    assert!(matches!(&t.rate, AttributeRate::Vertex { indices } if indices[..] == [0, 1, 2, 0, 2, 3]));
+    let MaterialDesc::Diffuse(DiffuseMaterial {
+        reflectance: Texture::Mix(mix),
+    }) = material(1)
+    else {
+        panic!("{:?}", material(1))
+    };
+    let Texture::MeshAttribute(w) = &mix.amount else {
+        panic!("{:?}", mix.amount)
+    };
+    assert_eq!((w.values[0], w.values[1]), (Rgb::splat(0.25), Rgb::splat(0.75)));
+    assert_eq!(w.rate, AttributeRate::Face);
+    assert_eq!(
+        (mix.tex1.constant(), mix.tex2.constant()),
+        (Some(Rgb::splat(0.2)), Some(Rgb::splat(0.6)))
+    );
+
+    // An attribute the file lacks, and one on a shape without attributes.
+    let bad = write(
+        dir.path(),
+        "bad.xml",
+        &scene(
+            r#"<bsdf type="diffuse" id="x"><texture type="mesh_attribute" name="reflectance"><string name="name" value="vertex_normal"/></texture></bsdf>
+<shape type="ply"><string name="filename" value="m.ply"/><ref id="x"/></shape>"#,
+        ),
+    );
+    let e = load(&bad).unwrap_err();
+    assert!(
+        e.message.contains("vertex_normal") && e.message.contains("vertex_color"),
+        "{e}"
+    );
+    let e = err(
+        r#"<bsdf type="diffuse" id="x"><texture type="mesh_attribute" name="reflectance"><string name="name" value="face_color"/></texture></bsdf>
+<shape type="sphere"><ref id="x"/></shape>"#,
+    );
+    assert_eq!(e.kind, SceneErrorKind::Unsupported, "{e}");
+    let e = err(
+        r#"<texture type="mesh_attribute" id="t"><string name="name" value="color"/></texture>
+<bsdf type="diffuse"><ref name="reflectance" id="t"/></bsdf>"#,
+    );
+    assert!(e.message.contains("vertex_"), "{e}");
+}

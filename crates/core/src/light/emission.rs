@@ -197,7 +197,7 @@ impl SpotLight {
         let p = self.position();
         Some(LightLeSample {
             ray: Ray::new(p, w),
-            le: self.intensity * self.falloff(w),
+            le: self.intensity_towards(w),
             pdf_pos: 1.0,
             pdf_dir: uniform_cone_pdf(self.cos_falloff_end),
             intr: Interaction::point(p),

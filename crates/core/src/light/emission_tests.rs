@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::light::{scene_center, scene_radius};
+use crate::light::{scene_center, scene_radius, SpotFalloff};
 use crate::math::{Bounds3, Mat4, Transform, UVec2};
 use crate::sampling::chi2::{suite_seed, Chi2Test, RectGrid, SphereGrid, SIGNIFICANCE};
 use crate::sampling::Pcg32;
@@ -113,8 +113,22 @@ fn all_lights() -> Vec<(Light, &'static str, f32)> {
                 intensity: Rgb::splat(4.0),
                 cos_falloff_start: 30f32.to_radians().cos(),
                 cos_falloff_end: 45f32.to_radians().cos(),
+                falloff: SpotFalloff::SmoothCosine,
+                projection: None,
             }),
             "spot",
+            1.0,
+        ),
+        (
+            Light::Spot(SpotLight {
+                world_from_light: transform(spot_m),
+                intensity: Rgb::splat(4.0),
+                cos_falloff_start: 30f32.to_radians().cos(),
+                cos_falloff_end: 45f32.to_radians().cos(),
+                falloff: SpotFalloff::LinearAngle,
+                projection: None,
+            }),
+            "spot, linear in angle",
             1.0,
         ),
         (

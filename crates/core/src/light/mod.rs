@@ -22,8 +22,8 @@ pub use distant::DistantLight;
 pub use emission::LightLeSample;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 pub use point::PointLight;
-pub use sampler::PowerLightSampler;
-pub use spot::{smooth_step, SpotLight};
+pub use sampler::{LightSelection, PowerLightSampler};
+pub use spot::{linear_angle_falloff, smooth_step, SpotFalloff, SpotLight};
 pub use uniform_infinite::UniformInfiniteLight;
 
 use crate::color::Rgb;

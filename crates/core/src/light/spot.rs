@@ -1,11 +1,26 @@
-//! A spot light (pbrt-v4 `spot`): a point that emits intensity `I` inside a cone around its
-//! axis, with pbrt-v4's smoothstep falloff between the falloff-start and cone angles:
-//! `I(theta) = I smoothstep(cos theta; cos theta_end, cos theta_start)`.
+//! A spot light: a point that emits intensity `I` inside a cone around its axis, with one of
+//! two falloffs towards the cone's edge ([`SpotFalloff`]): pbrt-v4's smoothstep in the
+//! cosine, `I(theta) = I smoothstep(cos theta; cos theta_end, cos theta_start)`, or
+//! Mitsuba 3's linear ramp in the angle, `I(theta) = I (theta_end - theta) / (theta_end -
+//! theta_start)` between the two angles (`src/emitters/spot.cpp`). Mitsuba's spot can also
+//! project an image along its cone ([`SpotLight::projection`]).
 
 use super::LightLiSample;
 use crate::color::Rgb;
 use crate::math::{Transform, Vec2, Vec3, PI};
 use crate::shape::Interaction;
+use crate::texture::{RgbTexture, TextureContext};
+
+/// How a spot light's intensity falls from full (inside the start angle) to zero (at the
+/// end angle).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SpotFalloff {
+    /// pbrt-v4: smoothstep in `cos theta`.
+    #[default]
+    SmoothCosine,
+    /// Mitsuba 3: linear in `theta`.
+    LinearAngle,
+}
 
 /// A spot light.
 #[derive(Clone, Debug)]
@@ -18,6 +33,14 @@ pub struct SpotLight {
     pub cos_falloff_start: f32,
     /// Cosine of the angle where the intensity reaches zero.
     pub cos_falloff_end: f32,
+    /// The falloff's shape.
+    pub falloff: SpotFalloff,
+    /// An image projected along the cone (Mitsuba's `texture`), multiplying the intensity.
+    /// The light-space direction `(x, y, z)` reads it at `u = 1/2 + x / (2 z tan theta_end)`,
+    /// `v = 1/2 - y / (2 z tan theta_end)` (mcrender's `v`, which runs up the image; it is
+    /// `1 - v` of Mitsuba's), so the image spans the square around the cone's end with
+    /// light-space +x towards its right edge and +y towards its bottom row, as in Mitsuba.
+    pub projection: Option<RgbTexture>,
 }
 
 /// `3 t^2 - 2 t^3` of `t = (x - a) / (b - a)` clamped to [0, 1]; a step at `a` when
@@ -32,6 +55,21 @@ pub fn smooth_step(x: f32, a: f32, b: f32) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// Mitsuba's linear falloff at `cos theta`: 1 inside the start angle, `(theta_end - theta)
+/// / (theta_end - theta_start)` up to the end angle (exclusive), 0 beyond.
+#[inline]
+#[must_use]
+pub fn linear_angle_falloff(cos_theta: f32, cos_start: f32, cos_end: f32) -> f32 {
+    if cos_theta <= cos_end {
+        0.0
+    } else if cos_theta >= cos_start {
+        1.0
+    } else {
+        let (start, end) = (cos_start.acos(), cos_end.acos());
+        ((end - cos_theta.clamp(-1.0, 1.0).acos()) / (end - start)).clamp(0.0, 1.0)
+    }
+}
+
 impl SpotLight {
     /// World position.
     #[inline]
@@ -40,13 +78,52 @@ impl SpotLight {
         self.world_from_light.point(Vec3::ZERO)
     }
 
-    /// Fraction of the axial intensity emitted along the world direction `w`.
+    /// Fraction of the axial intensity emitted along the light-space unit direction `w`,
+    /// without the projected image.
+    #[must_use]
+    pub fn falloff_local(&self, w: Vec3) -> f32 {
+        match self.falloff {
+            SpotFalloff::SmoothCosine => smooth_step(w.z, self.cos_falloff_end, self.cos_falloff_start),
+            SpotFalloff::LinearAngle => linear_angle_falloff(w.z, self.cos_falloff_start, self.cos_falloff_end),
+        }
+    }
+
+    /// Fraction of the axial intensity emitted along the world direction `w`, without the
+    /// projected image.
     #[must_use]
     pub fn falloff(&self, w: Vec3) -> f32 {
+        match self.world_from_light.inverse().vector(w).try_normalize() {
+            Some(w_light) => self.falloff_local(w_light),
+            None => 0.0,
+        }
+    }
+
+    /// Intensity emitted along the world direction `w`: the axial intensity times the
+    /// falloff and the projected image.
+    #[must_use]
+    pub fn intensity_towards(&self, w: Vec3) -> Rgb {
         let Some(w_light) = self.world_from_light.inverse().vector(w).try_normalize() else {
-            return 0.0;
+            return Rgb::BLACK;
         };
-        smooth_step(w_light.z, self.cos_falloff_end, self.cos_falloff_start)
+        let f = self.falloff_local(w_light);
+        if f <= 0.0 {
+            return Rgb::BLACK;
+        }
+        let i = self.intensity * f;
+        match &self.projection {
+            None => i,
+            Some(tex) => {
+                // tan(theta_end) = sin / cos of the end angle.
+                let c = self.cos_falloff_end;
+                let uv_factor = (1.0 - c * c).max(0.0).sqrt() / c;
+                let k = 0.5 / (w_light.z * uv_factor);
+                let ctx = TextureContext {
+                    uv: Vec2::new(0.5 + w_light.x * k, 0.5 - w_light.y * k),
+                    ..TextureContext::default()
+                };
+                i * tex.evaluate(&ctx)
+            }
+        }
     }
 
     /// The single direction to the light; `u` is unused.
@@ -56,7 +133,7 @@ impl SpotLight {
         let d = p - receiver.p;
         let r2 = d.length_squared();
         let wi = d.try_normalize()?;
-        let l = self.intensity * (self.falloff(-wi) / r2);
+        let l = self.intensity_towards(-wi) * (1.0 / r2);
         if l.is_black() {
             return None;
         }
@@ -68,11 +145,30 @@ impl SpotLight {
         })
     }
 
-    /// `2 pi I ((1 - cos_start) + (cos_start - cos_end) / 2)`: the full cone plus the
-    /// falloff band, whose smoothstep averages to one half.
+    /// The integral of the intensity over the sphere, without the projected image (which
+    /// only changes how often the light is chosen). Smooth: `2 pi I ((1 - cos_start) +
+    /// (cos_start - cos_end) / 2)`, the full cone plus the band, whose smoothstep averages
+    /// to one half. Linear in angle: `2 pi I (1 - (sin e - sin s) / (e - s))` for start and
+    /// end angles `s < e` (integrating `(e - theta) sin theta` by parts), `2 pi I (1 -
+    /// cos e)` when they are equal.
     #[must_use]
     pub fn power(&self) -> Rgb {
-        let (s, e) = (self.cos_falloff_start, self.cos_falloff_end);
-        self.intensity * (2.0 * PI * ((1.0 - s) + (s - e) / 2.0))
+        let (cs, ce) = (self.cos_falloff_start, self.cos_falloff_end);
+        let solid_angle = match self.falloff {
+            SpotFalloff::SmoothCosine => 2.0 * PI * ((1.0 - cs) + (cs - ce) / 2.0),
+            SpotFalloff::LinearAngle => {
+                let (s, e) = (cs.clamp(-1.0, 1.0).acos(), ce.clamp(-1.0, 1.0).acos());
+                if e - s > 1e-6 {
+                    2.0 * PI * (1.0 - (e.sin() - s.sin()) / (e - s))
+                } else {
+                    2.0 * PI * (1.0 - ce)
+                }
+            }
+        };
+        self.intensity * solid_angle
     }
 }
+
+#[cfg(test)]
+#[path = "spot_tests.rs"]
+mod tests;

@@ -575,6 +575,8 @@ fn spot_light_falloff_and_power() {
         intensity: Rgb::new(3.0, 2.0, 1.0),
         cos_falloff_start: start.cos(),
         cos_falloff_end: end.cos(),
+        falloff: SpotFalloff::SmoothCosine,
+        projection: None,
     };
     let li_at = |angle: f32| {
         let recv = pos + 2.0 * Vec3::new(angle.sin(), -angle.cos(), 0.0);

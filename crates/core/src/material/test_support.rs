@@ -21,6 +21,7 @@ pub fn hit() -> SurfaceInteraction {
         uv: Vec2::splat(0.5),
         wo: Vec3::Z,
         t: 1.0,
+        mesh: crate::shape::MeshPoint::default(),
     }
 }
 

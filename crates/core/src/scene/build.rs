@@ -364,6 +364,14 @@ fn validate_light(i: usize, l: &LightDesc) -> Result<(), BuildError> {
                     format!("expected -1 <= cos_falloff_end <= cos_falloff_start <= 1, found {end} and {start}"),
                 ));
             }
+            if s.projection.is_some() && end <= 0.0 {
+                return Err(invalid(
+                    format!("cone of light {i}"),
+                    format!(
+                        "a projected image needs a cone narrower than 90 degrees (cos_falloff_end > 0), found {end}"
+                    ),
+                ));
+            }
         }
         LightDesc::Distant { direction, radiance } => {
             check_finite(&format!("direction of light {i}"), &direction.to_array())?;
@@ -522,6 +530,8 @@ impl Scene {
                     intensity: s.intensity,
                     cos_falloff_start: s.cos_falloff_start,
                     cos_falloff_end: s.cos_falloff_end,
+                    falloff: s.falloff,
+                    projection: s.projection.clone(),
                 }),
                 &LightDesc::Distant { direction, radiance } => Light::Distant(DistantLight {
                     direction: direction.normalize(),
@@ -602,7 +612,7 @@ impl Scene {
         Ok(Self {
             primitives,
             materials,
-            light_sampler: PowerLightSampler::new(&lights),
+            light_sampler: PowerLightSampler::with_selection(&lights, desc.integrator.light_selection),
             lights,
             infinite_lights,
             camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film, filter.radius())),

@@ -6,7 +6,7 @@
 pub use crate::camera::CameraDesc;
 use crate::color::Rgb;
 pub use crate::film::{FilmDesc, FilterDesc};
-pub use crate::light::EnvMapping;
+pub use crate::light::{EnvMapping, LightSelection, SpotFalloff};
 pub use crate::material::{
     CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial,
     DiffuseTransmissionMaterial, MaterialDesc, MaterialId, MetallicRoughnessMaterial, MixMaterial, NormalMapMaterial,
@@ -257,6 +257,8 @@ pub struct IntegratorDesc {
     pub sppm: SppmDesc,
     /// MLT parameters (used by [`IntegratorKind::Mlt`]).
     pub mlt: MltDesc,
+    /// How next-event estimation chooses a light.
+    pub light_selection: LightSelection,
 }
 
 impl Default for IntegratorDesc {
@@ -270,6 +272,7 @@ impl Default for IntegratorDesc {
             bdpt: BdptDesc::default(),
             sppm: SppmDesc::default(),
             mlt: MltDesc::default(),
+            light_selection: LightSelection::Power,
         }
     }
 }
@@ -421,8 +424,9 @@ pub enum LightDesc {
 }
 
 /// A spot light: intensity `I` inside a cone around the light's +z axis, falling off
-/// smoothly to zero between the cone angles.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// to zero between the cone angles (smoothly as pbrt-v4 or linearly in angle as Mitsuba 3),
+/// optionally with a projected image.
+#[derive(Clone, Debug, PartialEq)]
 pub struct SpotLightDesc {
     /// World-from-light transform: the light sits at the light-space origin and points
     /// along light-space +z.
@@ -433,6 +437,10 @@ pub struct SpotLightDesc {
     pub cos_falloff_start: f32,
     /// Cosine of the angle where the intensity reaches zero (`<= cos_falloff_start`).
     pub cos_falloff_end: f32,
+    /// The falloff's shape.
+    pub falloff: SpotFalloff,
+    /// An image projected along the cone (see [`crate::light::SpotLight::projection`]).
+    pub projection: Option<RgbTexture>,
 }
 
 /// A linear RGB image, row-major, row 0 at the top.

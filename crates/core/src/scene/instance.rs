@@ -124,6 +124,7 @@ impl Instance {
             uv: si.uv,
             wo: -ray.d.normalize(),
             t: si.t,
+            mesh: si.mesh,
         }
     }
 }

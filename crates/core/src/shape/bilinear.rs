@@ -292,6 +292,7 @@ impl BilinearPatch {
             uv: uv_tex,
             wo,
             t,
+            mesh: crate::shape::MeshPoint::default(),
         }
     }
 

@@ -144,6 +144,7 @@ impl Disk {
             uv,
             wo,
             t,
+            mesh: crate::shape::MeshPoint::default(),
         }
     }
 

@@ -49,6 +49,17 @@ impl Interaction {
     }
 }
 
+/// Where a hit lies on a triangle mesh: the triangle's index in its mesh and the
+/// barycentric weights of its three vertices (all zero for other shapes). Mesh attribute
+/// textures interpolate with them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeshPoint {
+    /// Index of the triangle in its mesh.
+    pub triangle: u32,
+    /// Barycentric weights of the triangle's vertices, in the mesh's index order.
+    pub b: [f32; 3],
+}
+
 /// Everything the integrator needs at a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceInteraction {
@@ -71,6 +82,8 @@ pub struct SurfaceInteraction {
     pub wo: Vec3,
     /// Ray parameter of the hit.
     pub t: f32,
+    /// The triangle and barycentrics of the hit on a mesh.
+    pub mesh: MeshPoint,
 }
 
 impl SurfaceInteraction {

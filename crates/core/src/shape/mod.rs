@@ -10,7 +10,7 @@ mod triangle;
 
 pub use bilinear::BilinearPatch;
 pub use disk::Disk;
-pub use interaction::{Interaction, SurfaceInteraction};
+pub use interaction::{Interaction, MeshPoint, SurfaceInteraction};
 pub use mesh::{BilinearMesh, TriangleMesh};
 pub use sphere::{Sphere, SphereClip};
 pub use triangle::Triangle;

@@ -225,6 +225,7 @@ impl Sphere {
             uv,
             wo,
             t,
+            mesh: crate::shape::MeshPoint::default(),
         }
     }
 

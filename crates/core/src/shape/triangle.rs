@@ -225,6 +225,10 @@ impl Triangle {
             uv,
             wo,
             t,
+            mesh: crate::shape::MeshPoint {
+                triangle: self.index,
+                b,
+            },
         }
     }
 

@@ -4,7 +4,7 @@
 //! `SurfaceInteraction::ComputeDifferentials`).
 
 use crate::math::{Vec2, Vec3};
-use crate::shape::SurfaceInteraction;
+use crate::shape::{MeshPoint, SurfaceInteraction};
 
 /// A point to evaluate textures at, with the footprint of a pixel sample around it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -25,6 +25,8 @@ pub struct TextureContext {
     pub dvdx: f32,
     /// `dv/dy`.
     pub dvdy: f32,
+    /// The triangle and barycentrics on a mesh, for mesh attributes.
+    pub mesh: MeshPoint,
 }
 
 impl TextureContext {
@@ -34,6 +36,7 @@ impl TextureContext {
         Self {
             p: si.p(),
             uv: si.uv,
+            mesh: si.mesh,
             ..Self::default()
         }
     }
@@ -68,6 +71,7 @@ impl TextureContext {
             dudy,
             dvdx,
             dvdy,
+            mesh: si.mesh,
         }
     }
 }

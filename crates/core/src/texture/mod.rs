@@ -6,7 +6,8 @@
 //!
 //! Classes: `constant`, `scale`, `mix`, `checkerboard` (2-D, box filtered), `imagemap`
 //! (MIP-mapped; point, bilinear, trilinear or EWA lookups; see [`mipmap`]), `bitmap`
-//! (Mitsuba's: full resolution, nearest or bilinear). Mappings: uv,
+//! (Mitsuba's: full resolution, nearest or bilinear), `mesh_attribute` (Mitsuba's: values
+//! per vertex or per face of one mesh, [`MeshAttributeTexture`]). Mappings: uv,
 //! spherical, cylindrical, planar ([`TextureMapping`]).
 
 mod alpha;
@@ -15,6 +16,7 @@ mod checkerboard;
 mod context;
 mod image;
 mod mapping;
+mod mesh_attribute;
 pub mod mipmap;
 mod mix;
 mod scale;
@@ -31,6 +33,7 @@ pub use checkerboard::{checkerboard_weight, CheckerboardTexture};
 pub use context::TextureContext;
 pub use image::ImageTexture;
 pub use mapping::{TexCoord2D, TextureMapping};
+pub use mesh_attribute::{AttributeRate, MeshAttributeTexture};
 pub use mipmap::{MipFilter, MipFilterOptions, MipLevel, MipMap, WrapMode};
 pub use mix::MixTexture;
 pub use scale::ScaleTexture;
@@ -74,6 +77,8 @@ pub enum Texture<T: TextureValue> {
     Image(Arc<ImageTexture>),
     /// An unfiltered full-resolution image (Mitsuba's `bitmap`).
     Bitmap(Arc<BitmapTexture>),
+    /// Values attached to the vertices or faces of one mesh (Mitsuba's `mesh_attribute`).
+    MeshAttribute(Arc<MeshAttributeTexture>),
 }
 
 /// A texture of floats (roughness, mix amounts, ...).
@@ -98,6 +103,7 @@ impl<T: TextureValue> Texture<T> {
             Self::Checkerboard(t) => t.evaluate(ctx),
             Self::Image(t) => T::from_texel(t.evaluate_rgb(ctx)),
             Self::Bitmap(t) => T::from_texel(t.evaluate_rgb(ctx)),
+            Self::MeshAttribute(t) => T::from_texel(t.evaluate_rgb(ctx)),
         }
     }
 

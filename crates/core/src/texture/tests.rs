@@ -292,6 +292,7 @@ fn plane_hit(d: f32, scale: f32) -> SurfaceInteraction {
         uv: Vec2::ZERO,
         wo: -Vec3::Z,
         t: d,
+        mesh: crate::shape::MeshPoint::default(),
     }
 }
 

@@ -9,7 +9,7 @@
 use gltf::khr_lights_punctual::Kind;
 use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec3};
-use mcrender_core::scene::{LightDesc, SpotLightDesc};
+use mcrender_core::scene::{LightDesc, SpotFalloff, SpotLightDesc};
 
 /// Lumens per watt: the photometric-to-radiometric conversion (see the module docs).
 pub const LUMENS_PER_WATT: f32 = 683.0;
@@ -69,6 +69,8 @@ pub fn light(
                 intensity: value,
                 cos_falloff_start: inner.cos(),
                 cos_falloff_end: outer.cos(),
+                falloff: SpotFalloff::SmoothCosine,
+                projection: None,
             })
         }
     })

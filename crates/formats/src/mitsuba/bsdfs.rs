@@ -21,20 +21,29 @@
 //!   -> the nested BSDF with Mitsuba's perturbed shading frame
 //!   (`MaterialDesc::NormalMap`).
 //!
+//! * `blendbsdf` (`weight`, a float or texture; two nested BSDFs): Mitsuba evaluates
+//!   `(1 - w) f0 + w f1` and samples one lobe by weight. Two `diffuse` BSDFs are exactly a
+//!   diffuse of reflectance `(1 - w) r0 + w r1` (both lobes sample the same cosine), which
+//!   is what they become; other pairs become mcrender's `mix` material (one of the two per
+//!   shading point, chosen with probability `w`: the same expectation, with more noise
+//!   than Mitsuba's), with a warning.
+//!
 //! Not rendered (errors naming the plugin): `principled`, `principledthin`, `bumpmap`,
-//! `blendbsdf`, `pplastic`, `hair`, `measured`, `polarizer`, `retarder`,
-//! `circular`, `null`.
+//! `pplastic`, `hair`, `measured`, `polarizer`, `retarder`, `circular`, `null`.
 //!
 //! Differences kept: Mitsuba's `diffuse` is black seen from behind (mcrender's reflects on
 //! both sides: the same wherever only front faces are seen), and so is its plastic.
 
+use std::sync::Arc;
+
 use mcrender_core::bsdf::{Masking, MicrofacetModel, MicrofacetStyle, PlasticCoat};
 use mcrender_core::color::Rgb;
 use mcrender_core::material::{
-    ConductorMaterial, DielectricMaterial, DiffuseMaterial, NormalMapMaterial, PlasticMaterial, ThinDielectricMaterial,
+    ConductorMaterial, DielectricMaterial, DiffuseMaterial, MixMaterial, NormalMapMaterial, PlasticMaterial,
+    ThinDielectricMaterial,
 };
 use mcrender_core::scene::MaterialDesc;
-use mcrender_core::texture::RgbTexture;
+use mcrender_core::texture::{MixTexture, RgbTexture, Texture};
 
 use super::builder::{Builder, Named, Surface};
 use super::props::Props;
@@ -43,8 +52,21 @@ use super::xml::Element;
 use crate::error::SceneError;
 
 impl Builder {
-    /// A `<bsdf>` element as a surface (material plus mask).
+    /// A `<bsdf>` element as a surface (material plus mask). One built with placeholder
+    /// mesh attributes is remembered in [`Builder::attribute_bsdfs`].
     pub fn bsdf(&mut self, el: &Element) -> Result<Surface, SceneError> {
+        let outer = std::mem::replace(&mut self.deferred_attribute, false);
+        let surface = self.bsdf_plugin(el)?;
+        let deferred = self.deferred_attribute;
+        self.deferred_attribute = outer || deferred;
+        if deferred {
+            self.attribute_bsdfs.insert(surface.material, el.clone());
+        }
+        Ok(surface)
+    }
+
+    /// [`Self::bsdf`] without the bookkeeping of mesh attributes.
+    fn bsdf_plugin(&mut self, el: &Element) -> Result<Surface, SceneError> {
         let kind = el.required("type")?;
         let mut p = Props::new(el);
         let surface = match kind {
@@ -214,13 +236,62 @@ impl Builder {
                     coat,
                 }))
             }
-            "principled" | "principledthin" | "bumpmap" | "blendbsdf" | "pplastic" | "hair" | "measured"
-            | "polarizer" | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
+            "blendbsdf" => self.blendbsdf(el, &mut p)?,
+            "principled" | "principledthin" | "bumpmap" | "pplastic" | "hair" | "measured" | "polarizer"
+            | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
             _ => return Err(Self::unsupported(el, " (unknown BSDF plugin)")),
         };
         self.name(el, Named::Bsdf(surface.clone()));
         self.finish(&p);
         Ok(surface)
+    }
+
+    /// `blendbsdf` (module docs).
+    fn blendbsdf(&mut self, el: &Element, p: &mut Props) -> Result<Surface, SceneError> {
+        let mut surfaces = Vec::new();
+        for b in p.nested("bsdf") {
+            surfaces.push(if b.tag == "bsdf" {
+                self.bsdf(b)?
+            } else {
+                match self.lookup(b)? {
+                    Named::Bsdf(s) => s.clone(),
+                    _ => return Err(SceneError::invalid(&b.loc, "this <ref> must name a bsdf")),
+                }
+            });
+        }
+        p.use_refs();
+        let [a, b] = surfaces.as_slice() else {
+            return Err(SceneError::syntax(
+                &el.loc,
+                format!("a blendbsdf needs two nested BSDFs, found {}", surfaces.len()),
+            ));
+        };
+        if a.alpha.is_some() || b.alpha.is_some() {
+            return Err(SceneError::unsupported(&el.loc, "a blendbsdf of masked BSDFs"));
+        }
+        if !p.has("weight") {
+            return Err(SceneError::syntax(&el.loc, "a blendbsdf needs a \"weight\""));
+        }
+        let weight = self.float_param(p, "weight", 0.5)?;
+        let materials = &self.desc.materials;
+        if let (MaterialDesc::Diffuse(d0), MaterialDesc::Diffuse(d1)) =
+            (&materials[a.material as usize], &materials[b.material as usize])
+        {
+            let reflectance = Texture::Mix(Arc::new(MixTexture {
+                tex1: d0.reflectance.clone(),
+                tex2: d1.reflectance.clone(),
+                amount: weight,
+            }));
+            return Ok(self.plain(MaterialDesc::Diffuse(DiffuseMaterial { reflectance })));
+        }
+        self.warnings.push(format!(
+            "{}: warning: a blendbsdf of other than two diffuse BSDFs is rendered as a stochastic mix (same mean, more noise than Mitsuba's)",
+            el.loc
+        ));
+        Ok(self.plain(MaterialDesc::Mix(MixMaterial {
+            materials: [a.material, b.material],
+            amount: weight,
+        })))
     }
 
     /// An unmasked surface of a new material.

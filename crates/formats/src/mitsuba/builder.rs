@@ -11,8 +11,8 @@ use std::sync::Arc;
 use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
-    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MaterialDesc, MaterialId,
-    RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
+    CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection, MaterialDesc,
+    MaterialId, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
 };
 use mcrender_core::texture::FloatTexture;
 
@@ -68,6 +68,14 @@ pub struct Builder {
     pub limits: LoadLimits,
     /// Estimated bytes of the images read so far (`crate::limits` estimates).
     pub image_bytes: u64,
+    /// The attributes of the shape whose BSDF is being built (`mesh_attribute` textures
+    /// read them), if any.
+    pub mesh_attributes: Option<super::attributes::MeshAttributes>,
+    /// Set when a `mesh_attribute` was met with no [`Self::mesh_attributes`].
+    pub deferred_attribute: bool,
+    /// BSDFs built with placeholder mesh attributes: material -> the `<bsdf>` to build
+    /// again for each shape that uses it.
+    pub attribute_bsdfs: HashMap<MaterialId, Element>,
 }
 
 impl Builder {
@@ -89,6 +97,7 @@ impl Builder {
             },
             integrator: IntegratorDesc {
                 max_depth: UNLIMITED_DEPTH,
+                light_selection: LightSelection::Uniform,
                 ..IntegratorDesc::default()
             },
             materials: Vec::new(),
@@ -107,6 +116,9 @@ impl Builder {
             default_material: None,
             limits,
             image_bytes: 0,
+            mesh_attributes: None,
+            deferred_attribute: false,
+            attribute_bsdfs: HashMap::new(),
         }
     }
 
@@ -423,7 +435,11 @@ impl Builder {
                 if p.bool("hide_emitters", false)? {
                     return Err(SceneError::unsupported(&el.loc, "\"hide_emitters\" = true"));
                 }
-                let mut d = IntegratorDesc::default();
+                // Mitsuba chooses emitters uniformly (`Scene::sample_emitter`).
+                let mut d = IntegratorDesc {
+                    light_selection: LightSelection::Uniform,
+                    ..IntegratorDesc::default()
+                };
                 if kind == "direct" {
                     d.kind = IntegratorKind::Direct;
                     d.max_depth = 1;

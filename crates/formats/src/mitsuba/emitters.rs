@@ -1,8 +1,8 @@
 //! Emitters that are not attached to shapes: `point` (`intensity`, `position` or
-//! `to_world`), `directional` (`irradiance`, `direction` or `to_world`'s +z), `constant`
-//! (`radiance`) and `envmap` (`filename`, `scale`, `to_world`). Area emitters belong to
-//! shapes (`shapes`); `spot` is not rendered (Mitsuba's falloff, linear in angle, and its
-//! projected texture differ from pbrt's spot light).
+//! `to_world`), `spot` (`intensity`, `cutoff_angle`, `beam_width`, `texture`, `to_world`:
+//! [`SpotFalloff::LinearAngle`], Mitsuba's linear ramp in angle, and the projected texture),
+//! `directional` (`irradiance`, `direction` or `to_world`'s +z), `constant` (`radiance`) and
+//! `envmap` (`filename`, `scale`, `to_world`). Area emitters belong to shapes (`shapes`).
 //!
 //! Mitsuba's envmap is a latitude-longitude image with +y up: a direction `d` (in the
 //! emitter's space) reads `u = atan2(d.x, -d.z) / 2 pi`, `v = acos(d.y) / pi`. mcrender's
@@ -11,8 +11,9 @@
 //! interpolated bilinearly as Mitsuba does ([`EnvMapping::EquirectBilinear`]: columns
 //! centred at `(x + 0.5) / width`, rows from pole to pole at `y / (height - 1)`).
 
+use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec3, Vec4};
-use mcrender_core::scene::{EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc};
+use mcrender_core::scene::{EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, SpotFalloff, SpotLightDesc};
 
 use super::builder::{Builder, Named};
 use super::images::ImageUse;
@@ -89,11 +90,35 @@ impl Builder {
                     "an area emitter must be nested in the <shape> that emits",
                 ))
             }
-            "spot" => return Err(Self::unsupported(el, " yet (Mitsuba's spot falloff and texture)")),
+            "spot" => {
+                let intensity = self.emitter_color(&mut p, "intensity")?;
+                let cutoff = p.float("cutoff_angle", 20.0)?;
+                let beam = p.float("beam_width", cutoff * 0.75)?;
+                if !(0.0 <= beam && beam <= cutoff && cutoff < 90.0) {
+                    return Err(SceneError::invalid(
+                        &el.loc,
+                        format!("a spot needs 0 <= beam_width <= cutoff_angle < 90 degrees, found {beam} and {cutoff}"),
+                    ));
+                }
+                let projection = match p.get("texture") {
+                    None => None,
+                    Some(_) => Some(self.rgb_param(&mut p, "texture", Rgb::splat(1.0), false)?),
+                };
+                let world_from_light = Transform::new(to_world.unwrap_or(Mat4::IDENTITY))
+                    .ok_or_else(|| SceneError::invalid(&el.loc, "the spot's to_world is singular"))?;
+                LightDesc::Spot(SpotLightDesc {
+                    world_from_light,
+                    intensity,
+                    cos_falloff_start: beam.to_radians().cos(),
+                    cos_falloff_end: cutoff.to_radians().cos(),
+                    falloff: SpotFalloff::LinearAngle,
+                    projection,
+                })
+            }
             _ => {
                 return Err(Self::unsupported(
                     el,
-                    " (emitters: area, point, directional, constant, envmap)",
+                    " (emitters: area, point, spot, directional, constant, envmap)",
                 ))
             }
         };

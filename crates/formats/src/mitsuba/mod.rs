@@ -16,6 +16,7 @@
 //! -x (pbrt's along +x), so the camera transform is mirrored in x; Mitsuba's `max_depth`
 //! counts the camera ray (1 = emission only), mcrender's counts scattering events.
 
+mod attributes;
 mod bsdfs;
 mod builder;
 mod emitters;

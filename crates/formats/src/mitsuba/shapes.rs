@@ -13,6 +13,9 @@
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{AreaLightDesc, GeometryDesc, InstanceDesc, ObjectDesc, ShapeDesc, TriangleMeshDesc};
 
+use std::sync::Arc;
+
+use super::attributes::MeshAttributes;
 use super::builder::{Builder, Named, Surface};
 use super::props::Props;
 use super::xml::Element;
@@ -93,7 +96,10 @@ impl Builder {
             surface = Some(s);
         }
         p.use_refs();
-        let Surface { material, alpha } = match surface {
+        let Surface {
+            mut material,
+            mut alpha,
+        } = match surface {
             Some(s) => s,
             None => self.default_surface(),
         };
@@ -118,6 +124,7 @@ impl Builder {
             });
         }
         let flip = p.bool("flip_normals", false)?;
+        let mut ply_attributes = None;
         let geometry = match kind.as_str() {
             "obj" | "ply" => {
                 let (file, floc) = p
@@ -140,6 +147,7 @@ impl Builder {
                         };
                         SceneError::io(&floc, format!("cannot read PLY {}: {why}", quoted(&file)))
                     })?;
+                    ply_attributes = Some(MeshAttributes::of_ply(&ply));
                     let mut m = TriangleMeshDesc {
                         positions: ply.positions,
                         indices: ply.indices,
@@ -203,6 +211,11 @@ impl Builder {
                 ))
             }
         };
+        if let Some(bsdf) = self.attribute_bsdfs.get(&material).cloned() {
+            let surface = self.bsdf_with_attributes(el, &bsdf, &geometry, ply_attributes)?;
+            material = surface.material;
+            alpha = surface.alpha;
+        }
         let shape = ShapeDesc {
             geometry,
             material,
@@ -288,4 +301,39 @@ fn cube() -> TriangleMeshDesc {
         }
     }
     m
+}
+
+impl Builder {
+    /// The `<bsdf>` `bsdf`, which reads mesh attributes, built again for the shape `el`
+    /// with the attributes of its PLY file and its final vertex indices. The BSDF's `id`
+    /// keeps naming the first build, and its warnings are not repeated.
+    fn bsdf_with_attributes(
+        &mut self,
+        el: &Element,
+        bsdf: &Element,
+        geometry: &GeometryDesc,
+        attributes: Option<MeshAttributes>,
+    ) -> Result<Surface, SceneError> {
+        let (GeometryDesc::TriangleMesh(mesh), Some(mut attributes)) = (geometry, attributes) else {
+            return Err(SceneError::unsupported(
+                &el.loc,
+                format!(
+                    "{} with a mesh_attribute texture (only PLY meshes have attributes)",
+                    el.describe()
+                ),
+            ));
+        };
+        attributes.indices = Arc::new(mesh.indices.clone());
+        let id = bsdf.attr("id").map(str::to_string);
+        let named = id.as_ref().and_then(|id| self.named.get(id).cloned());
+        let warnings = self.warnings.len();
+        self.mesh_attributes = Some(attributes);
+        let surface = self.bsdf(bsdf);
+        self.mesh_attributes = None;
+        self.warnings.truncate(warnings);
+        if let (Some(id), Some(named)) = (id, named) {
+            self.named.insert(id, named);
+        }
+        surface
+    }
 }

@@ -1,8 +1,8 @@
 //! Texturable parameters and textures: a parameter is an `<rgb>`, `<spectrum>`, `<float>`,
 //! a nested `<texture>` or a named `<ref>` to one. Texture plugins: `bitmap` (`filename`,
 //! `raw`, `filter_type` bilinear/nearest, `wrap_mode` repeat/mirror/clamp, `to_uv` scale and
-//! translation), `checkerboard` (`color0`, `color1`, `to_uv`) and `rawconstant` (`value`,
-//! a float or a vector, used as is).
+//! translation), `checkerboard` (`color0`, `color1`, `to_uv`), `rawconstant` (`value`,
+//! a float or a vector, used as is) and `mesh_attribute` (`name`, `scale`; see `attributes`).
 //!
 //! Mitsuba's `uv` has `v` pointing down the image (row 0 at `v = 0`); mcrender's meshes
 //! carry pbrt's `v = 1 - v_mitsuba` (see `shapes`) and its image textures put row 0 at
@@ -217,10 +217,11 @@ impl Builder {
                 };
                 Texture::Constant(T::from_rgb(c, e)?)
             }
+            "mesh_attribute" => self.mesh_attribute_texture::<T>(e, &mut p)?,
             _ => {
                 return Err(Builder::unsupported(
                     e,
-                    " (textures: bitmap, checkerboard, rawconstant)",
+                    " (textures: bitmap, checkerboard, rawconstant, mesh_attribute)",
                 ));
             }
         };

@@ -30,7 +30,9 @@ use glam::{Mat4, Vec3};
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Transform;
 use mcrender_core::sampling::equal_area_square_to_sphere;
-use mcrender_core::scene::{AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, SpotLightDesc};
+use mcrender_core::scene::{
+    AreaLightDesc, EnvMapping, ImageInfiniteLightDesc, LightDesc, RgbImageDesc, SpotFalloff, SpotLightDesc,
+};
 
 use super::builder::SceneBuilder;
 use super::files::ImageUse;
@@ -144,6 +146,8 @@ impl SceneBuilder {
             intensity,
             cos_falloff_start: cos_start,
             cos_falloff_end: cos_end,
+            falloff: SpotFalloff::SmoothCosine,
+            projection: None,
         }))
     }
 

@@ -4,8 +4,8 @@
 use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
-    BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, MltDesc,
-    RussianRoulette, SamplerDesc, SamplerKind, SppmDesc,
+    BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection,
+    MltDesc, RussianRoulette, SamplerDesc, SamplerKind, SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -337,6 +337,7 @@ impl SceneBuilder {
             bdpt,
             sppm,
             mlt,
+            light_selection: LightSelection::Power,
         };
         self.warn_unused(params);
         Ok(())
