@@ -537,3 +537,11 @@ fn mesh_attributes_bind_to_each_ply_shape() {
     );
     assert!(e.message.contains("vertex_"), "{e}");
 }
+
+/// `null`: no surface at all, rays pass through (mcrender's interface material).
+#[test]
+fn null_bsdf_is_an_interface() {
+    let m = materials(&[r#"<bsdf type="null"/>"#, r#"<bsdf type="diffuse"/>"#]);
+    assert_eq!(m[0], MaterialDesc::Interface);
+    assert_ne!(m[1], MaterialDesc::Interface);
+}

@@ -238,7 +238,9 @@ impl Builder {
             }
             "blendbsdf" => self.blendbsdf(el, &mut p)?,
             "principled" | "principledthin" | "bumpmap" | "pplastic" | "hair" | "measured" | "polarizer"
-            | "retarder" | "circular" | "null" => return Err(Self::unsupported(el, "")),
+            | "retarder" | "circular" => return Err(Self::unsupported(el, "")),
+            // No surface: rays pass straight through (as pbrt's interface material).
+            "null" => self.plain(MaterialDesc::Interface),
             _ => return Err(Self::unsupported(el, " (unknown BSDF plugin)")),
         };
         self.name(el, Named::Bsdf(surface.clone()));
