@@ -2,7 +2,7 @@
 //! between them, evaluated stochastically (`bsdf::LayeredBxdf`).
 
 use super::checks::{check_positive_eta, check_rgb, check_roughness, check_slab, InvalidParameter};
-use super::params::{alpha, coat, index_from_reflectance, unit, MAX_ABS_G};
+use super::params::{alpha, coat, index_from_reflectance, slab_at, slab_is_constant};
 use crate::bsdf::{Bxdf, ConductorBxdf, LayeredBxdf, Microfacet};
 use crate::texture::{FloatTexture, RgbTexture, TextureContext};
 
@@ -72,14 +72,13 @@ impl CoatedConductorMaterial {
             && self.reflectance.as_ref().is_none_or(RgbTexture::is_constant)
             && self.conductor_u_roughness.is_constant()
             && self.conductor_v_roughness.is_constant()
-            && self.thickness.is_constant()
-            && self.albedo.is_constant()
-            && self.g.is_constant())
+            && slab_is_constant(&self.thickness, &self.albedo, &self.g))
     }
 
     /// The stochastic layered lobe with the textures evaluated at `ctx`.
     #[must_use]
     pub fn bxdf(&self, ctx: &TextureContext) -> Bxdf {
+        let (thickness, albedo, g) = slab_at(&self.thickness, &self.albedo, &self.g, ctx);
         let top = coat(
             self.interface_eta,
             self.interface_u_roughness.evaluate(ctx),
@@ -101,9 +100,9 @@ impl CoatedConductorMaterial {
                 eta: eta / top.eta,
                 k: k / top.eta,
             },
-            thickness: self.thickness.evaluate(ctx).max(f32::MIN_POSITIVE),
-            albedo: unit(self.albedo.evaluate(ctx)),
-            g: self.g.evaluate(ctx).clamp(-MAX_ABS_G, MAX_ABS_G),
+            thickness,
+            albedo,
+            g,
             max_depth: self.max_depth,
             n_samples: self.n_samples.max(1),
         })

@@ -2,7 +2,7 @@
 //! slab between them, evaluated stochastically (`bsdf::LayeredBxdf`).
 
 use super::checks::{check_positive_eta, check_rgb, check_roughness, check_slab, InvalidParameter};
-use super::params::{coat, unit, MAX_ABS_G};
+use super::params::{coat, slab_at, slab_is_constant, unit};
 use crate::bsdf::{Bxdf, DiffuseBxdf, LayeredBxdf};
 use crate::texture::{FloatTexture, RgbTexture, TextureContext};
 
@@ -46,14 +46,13 @@ impl CoatedDiffuseMaterial {
         !(self.reflectance.is_constant()
             && self.u_roughness.is_constant()
             && self.v_roughness.is_constant()
-            && self.thickness.is_constant()
-            && self.albedo.is_constant()
-            && self.g.is_constant())
+            && slab_is_constant(&self.thickness, &self.albedo, &self.g))
     }
 
     /// The stochastic layered lobe with the textures evaluated at `ctx`.
     #[must_use]
     pub fn bxdf(&self, ctx: &TextureContext) -> Bxdf {
+        let (thickness, albedo, g) = slab_at(&self.thickness, &self.albedo, &self.g, ctx);
         Bxdf::CoatedDiffuse(LayeredBxdf {
             top: coat(
                 self.eta,
@@ -64,9 +63,9 @@ impl CoatedDiffuseMaterial {
             bottom: DiffuseBxdf {
                 r: unit(self.reflectance.evaluate(ctx)),
             },
-            thickness: self.thickness.evaluate(ctx).max(f32::MIN_POSITIVE),
-            albedo: unit(self.albedo.evaluate(ctx)),
-            g: self.g.evaluate(ctx).clamp(-MAX_ABS_G, MAX_ABS_G),
+            thickness,
+            albedo,
+            g,
             max_depth: self.max_depth,
             n_samples: self.n_samples.max(1),
         })

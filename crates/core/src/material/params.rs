@@ -4,6 +4,7 @@
 
 use crate::bsdf::{roughness_to_alpha, DielectricBxdf, Microfacet};
 use crate::color::Rgb;
+use crate::texture::{FloatTexture, RgbTexture, TextureContext};
 
 /// The largest `|g|` a slab keeps: pbrt clamps `g` to [-1, 1], but the Henyey-Greenstein
 /// formula is 0/0 at the ends (a Dirac delta), so we stop just short of them.
@@ -37,4 +38,24 @@ pub(super) fn coat(eta: f32, u_roughness: f32, v_roughness: f32, remap: bool) ->
 /// A reflectance-like colour clamped to [0, 1] per channel.
 pub(super) fn unit(c: Rgb) -> Rgb {
     c.map(|v| v.clamp(0.0, 1.0))
+}
+
+/// The slab between a layered material's coat and base at `ctx`: thickness (kept above 0),
+/// albedo in [0, 1] and `g` clamped to [`MAX_ABS_G`].
+pub(super) fn slab_at(
+    thickness: &FloatTexture,
+    albedo: &RgbTexture,
+    g: &FloatTexture,
+    ctx: &TextureContext,
+) -> (f32, Rgb, f32) {
+    (
+        thickness.evaluate(ctx).max(f32::MIN_POSITIVE),
+        unit(albedo.evaluate(ctx)),
+        g.evaluate(ctx).clamp(-MAX_ABS_G, MAX_ABS_G),
+    )
+}
+
+/// Whether the slab's textures are all constants.
+pub(super) fn slab_is_constant(thickness: &FloatTexture, albedo: &RgbTexture, g: &FloatTexture) -> bool {
+    thickness.is_constant() && albedo.is_constant() && g.is_constant()
 }
