@@ -75,19 +75,7 @@ impl Builder {
                 self.plain(MaterialDesc::Diffuse(DiffuseMaterial { reflectance }))
             }
             "twosided" | "mask" | "normalmap" => {
-                let inner: Vec<_> = p.nested("bsdf");
-                let mut surfaces = Vec::new();
-                for b in inner {
-                    surfaces.push(if b.tag == "bsdf" {
-                        self.bsdf(b)?
-                    } else {
-                        match self.lookup(b)? {
-                            Named::Bsdf(s) => s.clone(),
-                            _ => return Err(SceneError::invalid(&b.loc, "this <ref> must name a bsdf")),
-                        }
-                    });
-                }
-                p.use_refs();
+                let surfaces = self.nested_surfaces(&mut p)?;
                 let inner = match surfaces.as_slice() {
                     [s] => s.clone(),
                     [] if kind != "twosided" => {
@@ -248,8 +236,8 @@ impl Builder {
         Ok(surface)
     }
 
-    /// `blendbsdf` (module docs).
-    fn blendbsdf(&mut self, el: &Element, p: &mut Props) -> Result<Surface, SceneError> {
+    /// The BSDFs nested in `p` (inline `<bsdf>`s and `<ref>`s to named ones), in order.
+    fn nested_surfaces(&mut self, p: &mut Props) -> Result<Vec<Surface>, SceneError> {
         let mut surfaces = Vec::new();
         for b in p.nested("bsdf") {
             surfaces.push(if b.tag == "bsdf" {
@@ -262,6 +250,12 @@ impl Builder {
             });
         }
         p.use_refs();
+        Ok(surfaces)
+    }
+
+    /// `blendbsdf` (module docs).
+    fn blendbsdf(&mut self, el: &Element, p: &mut Props) -> Result<Surface, SceneError> {
+        let surfaces = self.nested_surfaces(p)?;
         let [a, b] = surfaces.as_slice() else {
             return Err(SceneError::syntax(
                 &el.loc,
