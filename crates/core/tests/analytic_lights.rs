@@ -149,6 +149,31 @@ fn distant_light_irradiance_is_e_cos_theta() {
     assert_mean_radiance(&d, Rgb::BLACK);
 }
 
+/// The receiver of [`receiver_scene`] under a spot of intensity `i` 100 above it, its axis
+/// tilted by `alpha` from straight down, falling off between the angles `start` and `end`.
+fn spot_receiver(
+    rho: f32,
+    i: Rgb,
+    alpha: f32,
+    (start, end): (f32, f32),
+    falloff: SpotFalloff,
+) -> mcrender_core::scene::SceneDescription {
+    // Light-space +z points down (-y), tilted by alpha about x.
+    let m = Mat4::from_translation(Vec3::new(0.0, 100.0, 0.0))
+        * Mat4::from_rotation_x(alpha)
+        * Mat4::from_rotation_x(PI / 2.0);
+    let mut d = receiver_scene(rho, 16);
+    d.lights.push(LightDesc::Spot(SpotLightDesc {
+        world_from_light: Transform::new(m).unwrap(),
+        intensity: i,
+        cos_falloff_start: start.cos(),
+        cos_falloff_end: end.cos(),
+        falloff,
+        projection: None,
+    }));
+    d
+}
+
 /// A spot light 100 above the receiver, tilted so the receiver's centre is at angle alpha
 /// off its axis: E = I falloff(alpha) / 100^2 (the receiver faces the light, cos = 1). The
 /// distance keeps the variation of r^2 and of the angle across the pixels' footprint on the
@@ -160,19 +185,7 @@ fn spot_light_irradiance_follows_the_falloff() {
     let (start, end) = (15.0f32.to_radians(), 30.0f32.to_radians());
     for alpha_deg in [10.0f32, 22.5, 35.0] {
         let alpha = alpha_deg.to_radians();
-        // Light-space +z points down (-y), tilted by alpha about x.
-        let m = Mat4::from_translation(Vec3::new(0.0, 100.0, 0.0))
-            * Mat4::from_rotation_x(alpha)
-            * Mat4::from_rotation_x(PI / 2.0);
-        let mut d = receiver_scene(rho, 16);
-        d.lights.push(LightDesc::Spot(SpotLightDesc {
-            world_from_light: Transform::new(m).unwrap(),
-            intensity: i,
-            cos_falloff_start: start.cos(),
-            cos_falloff_end: end.cos(),
-            falloff: SpotFalloff::SmoothCosine,
-            projection: None,
-        }));
+        let d = spot_receiver(rho, i, alpha, (start, end), SpotFalloff::SmoothCosine);
         let t = ((alpha.cos() - end.cos()) / (start.cos() - end.cos())).clamp(0.0, 1.0);
         let falloff = t * t * (3.0 - 2.0 * t);
         eprintln!("alpha {alpha_deg}: falloff {falloff}");
@@ -189,18 +202,7 @@ fn mitsuba_spot_irradiance_ramps_linearly_in_angle() {
     let (start, end) = (15.0f32.to_radians(), 30.0f32.to_radians());
     for alpha_deg in [10.0f32, 18.0, 26.0, 35.0] {
         let alpha = alpha_deg.to_radians();
-        let m = Mat4::from_translation(Vec3::new(0.0, 100.0, 0.0))
-            * Mat4::from_rotation_x(alpha)
-            * Mat4::from_rotation_x(PI / 2.0);
-        let mut d = receiver_scene(rho, 16);
-        d.lights.push(LightDesc::Spot(SpotLightDesc {
-            world_from_light: Transform::new(m).unwrap(),
-            intensity: i,
-            cos_falloff_start: start.cos(),
-            cos_falloff_end: end.cos(),
-            falloff: SpotFalloff::LinearAngle,
-            projection: None,
-        }));
+        let d = spot_receiver(rho, i, alpha, (start, end), SpotFalloff::LinearAngle);
         let falloff = ((end - alpha) / (end - start)).clamp(0.0, 1.0);
         eprintln!("alpha {alpha_deg}: falloff {falloff}");
         assert_mean_radiance(&d, i * (rho / PI * falloff / 1e4));
