@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Side-by-side benchmark: the Cornell box at 256x256, same spp and depth, rendered by
 # mcrender and by Mitsuba 3 (llvm_ad_rgb and scalar_rgb) in one run, 2 threads each.
-# Prints one table; the ratio column is what to compare across machines, not the seconds.
+# Prints one table; the ratio columns are what to compare across machines, not the seconds.
+# relMSE is against ../shared/reference/cornell-box-256.exr; efficiency = 1 / (relMSE x time).
 #
 # Usage: bench/cbox.sh [SPP]   (default 256). Needs ../shared (peers/, scenes/) beside the repo.
 set -euo pipefail
@@ -30,42 +31,60 @@ run_mitsuba() { # variant
         --res "$RES" --spp "$SPP" --max-depth 65 --variant "$1" --threads "$THREADS" --out "$OUT/mitsuba-$1.exr" 2>/dev/null | tail -n 1
 }
 
-run_mcrender() { # sampler
+run_mcrender() { # name, then extra options
+    local name="$1"; shift
     # Warm-up render (page cache, CPU frequency), then the timed one.
     "$MC" render scenes/cornell-box/scene-v4.pbrt --resolution 16x16 --spp 4 -o "$OUT/warm.exr" -q 2>/dev/null
     "$MC" render scenes/cornell-box/scene-v4.pbrt --resolution "${RES}x${RES}" --spp "$SPP" --max-depth 65 \
-        --sampler "$1" --threads "$THREADS" -o "$OUT/mcrender-$1.exr" -q 2>&1 | tail -n 1
+        --threads "$THREADS" -o "$OUT/$name.exr" -q "$@" 2>&1 | tail -n 1
 }
 
-echo "Cornell box ${RES}x${RES}, ${SPP} spp, max depth 65, ${THREADS} threads; $(nproc) cores, $(date -u +%Y-%m-%dT%H:%MZ)"
-# Mitsuba's script uses its independent sampler: that row is like for like; the Sobol' row is
-# what the scene file asks for.
-mc_line="$(run_mcrender independent)"
-mc_sobol_line="$(run_mcrender sobol)"
+rel_mse() { # image: relative MSE against the shared Mitsuba reference (12,800 spp), by `mcrender diff`
+    if [ -f "$1" ]; then
+        "$MC" diff "$1" "$SHARED/reference/cornell-box-256.exr" --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["rel_mse"])'
+    else
+        echo nan
+    fi
+}
+
+echo "Cornell box ${RES}x${RES}, ${SPP} spp, max depth 65, ${THREADS} threads; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%Y-%m-%dT%H:%MZ)"
+# Mitsuba's script uses its independent sampler and its path tracer's Russian roulette (from
+# the fifth bounce, survival min(max throughput, 0.95)): the `--rr mitsuba` row is like for
+# like. The first row is mcrender's default (pbrt-v4's roulette, from the second bounce),
+# the Sobol' row what the scene file asks for.
+mc_line="$(run_mcrender mc-independent --sampler independent)"
+mc_rr_line="$(run_mcrender mc-independent-rr --sampler independent --rr mitsuba)"
+mc_sobol_line="$(run_mcrender mc-sobol --sampler sobol)"
 llvm_json="$(run_mitsuba llvm_ad_rgb || true)"
 scalar_json="$(run_mitsuba scalar_rgb || true)"
+errors="$(for f in mc-independent mc-independent-rr mc-sobol mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
 
-python3 - "$mc_line" "$llvm_json" "$scalar_json" "$RES" "$SPP" "$mc_sobol_line" <<'PY'
-import json, re, sys
-mc_line, llvm, scalar, res, spp, mc_sobol = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5]), sys.argv[6]
-rows = []
-for name, line in (("mcrender independent", mc_line), ("mcrender sobol", mc_sobol)):
+python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$llvm_json" "$scalar_json" <<'PY'
+import json, math, re, sys
+res, spp, errors = int(sys.argv[1]), int(sys.argv[2]), [float(e) for e in sys.argv[3].split()]
+mc_lines, peer_lines = sys.argv[4:7], sys.argv[7:9]
+names = ["mcrender independent", "mcrender indep. rr=mitsuba", "mcrender sobol", "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
+times = []
+for line in mc_lines:
     m = re.search(r"in ([0-9.]+) s", line)
     if not m:
         sys.exit(f"could not read mcrender's summary line: {line!r}")
-    rows.append((name, float(m.group(1))))
-for name, js in (("mitsuba llvm_ad_rgb", llvm), ("mitsuba scalar_rgb", scalar)):
+    times.append(float(m.group(1)))
+for js in peer_lines:
     try:
-        rows.append((name, json.loads(js)["wall_s"]))
+        times.append(json.loads(js)["wall_s"])
     except Exception:
-        rows.append((name, None))
-base = rows[2][1]
-print(f"{'renderer':<22}{'time (s)':>10}{'M paths/s':>12}{'time / mitsuba llvm':>22}")
-for name, t in rows:
+        times.append(None)
+base_t = times[3]
+eff = [1 / (e * t) if t and e > 0 and math.isfinite(e) else None for e, t in zip(errors, times)]
+base_e = eff[3]
+ratio = lambda a, b: f"{a / b:.2f}" if a and b else "n/a"
+# time / llvm: lower is faster; efficiency = 1 / (relMSE x time), over llvm's: higher is better.
+print(f"{'renderer':<28}{'time (s)':>9}{'M paths/s':>11}{'time / llvm':>13}{'relMSE':>11}{'efficiency / llvm':>19}")
+for name, t, e, f in zip(names, times, errors, eff):
     if t is None:
-        print(f"{name:<22}{'failed':>10}")
+        print(f"{name:<28}{'failed':>9}")
         continue
-    ratio = f"{t / base:.2f}" if base else "n/a"
-    print(f"{name:<22}{t:>10.2f}{res * res * spp / t / 1e6:>12.2f}{ratio:>22}")
+    print(f"{name:<28}{t:>9.2f}{res * res * spp / t / 1e6:>11.2f}{ratio(t, base_t):>13}{e:>11.2e}{ratio(f, base_e):>19}")
 PY
 rm -rf "$OUT"
