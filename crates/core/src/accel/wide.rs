@@ -9,8 +9,8 @@
 //!
 //! Closest-hit traversal is ordered: the children a ray enters are pushed far to near with
 //! their entry distance, and a popped entry farther than the closest hit so far is skipped.
-//! Any-hit traversal stops at the first blocker. As [`super::Bvh`], the tree knows
-//! primitives by index and bounds only; queries take a closure testing one primitive.
+//! Any-hit traversal stops at the first blocker. The tree knows primitives by index and
+//! bounds only; queries take a closure testing one primitive.
 
 use rayon::prelude::*;
 
@@ -153,12 +153,18 @@ impl WideBvh {
     /// parallel on the current rayon pool.
     #[must_use]
     pub fn build(bounds: &[Bounds3]) -> Self {
-        if bounds.is_empty() {
+        Self::build_with(bounds.len(), |i| bounds[i])
+    }
+
+    /// [`Self::build`] over `count` primitives whose bounds `bounds_of(i)` gives, asked once
+    /// each (in parallel), so no array of bounds need be made first.
+    #[must_use]
+    pub fn build_with(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Self {
+        if count == 0 {
             return Self::default();
         }
-        let mut prims = wide_build::build_prims(bounds);
-        let (nodes, root, bounds, levels) =
-            wide_build::build_wide(&mut prims, wide_build::Costs::for_count(bounds.len()));
+        let mut prims = wide_build::build_prims(count, bounds_of);
+        let (nodes, root, bounds, levels) = wide_build::build_wide(&mut prims, wide_build::Costs::for_count(count));
         Self {
             nodes,
             prim_indices: prims.par_iter().map(wide_build::BuildPrim::index).collect(),

@@ -113,12 +113,11 @@ impl Box3 {
     }
 }
 
-/// The primitives of `bounds`, in parallel.
-pub(super) fn build_prims(bounds: &[Bounds3]) -> Vec<BuildPrim> {
-    bounds
-        .par_iter()
-        .enumerate()
-        .map(|(i, b)| BuildPrim::new(b, i as u32))
+/// The primitives `0..count` with bounds `bounds_of(i)`, in parallel.
+pub(super) fn build_prims(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Vec<BuildPrim> {
+    (0..count)
+        .into_par_iter()
+        .map(|i| BuildPrim::new(&bounds_of(i), i as u32))
         .collect()
 }
 
@@ -615,6 +614,17 @@ mod tests {
         assert_eq!(floor_to_int(Vec3A::new(0.0, 11.0, 4_194_304.0)), [0, 11, 4_194_304]);
     }
 
+    /// Uniform floats in `[0, 1]` from a xorshift generator started at `seed`.
+    fn uniform(seed: u32) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state as f32 / u32::MAX as f32
+        }
+    }
+
     /// The index survives the trip through the boxes' fourth lanes.
     #[test]
     fn build_prims_keep_their_index() {
@@ -633,13 +643,7 @@ mod tests {
     /// leaf by the SAH, which `decide` then takes without binning.
     #[test]
     fn block_cost_small_nodes_are_leaves_by_the_sah() {
-        let mut state = 987u32;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            state as f32 / u32::MAX as f32
-        };
+        let mut next = uniform(987);
         for trial in 0..2000 {
             let n = 3 + trial % 2;
             let bounds: Vec<Bounds3> = (0..n)
@@ -649,7 +653,7 @@ mod tests {
                     Bounds3 { min: c - e, max: c + e }
                 })
                 .collect();
-            let mut prims = build_prims(&bounds);
+            let mut prims = build_prims(bounds.len(), |i| bounds[i]);
             let (boxed, centroids) = bounds_of(&prims);
             assert!(matches!(
                 sah_split(&mut prims, boxed, centroids, Costs::Blocks),
@@ -665,13 +669,7 @@ mod tests {
     /// tree is the same as one built computing them afresh.
     #[test]
     fn split_bounds_match_a_fresh_pass() {
-        let mut state = 12345u32;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            state as f32 / u32::MAX as f32
-        };
+        let mut next = uniform(12345);
         let bounds: Vec<Bounds3> = (0..5000)
             .map(|_| {
                 let c = crate::math::Vec3::new(next(), next(), next()) * 10.0;
@@ -679,7 +677,7 @@ mod tests {
                 Bounds3 { min: c - e, max: c + e }
             })
             .collect();
-        let mut prims = build_prims(&bounds);
+        let mut prims = build_prims(bounds.len(), |i| bounds[i]);
         let (boxed, centroids) = bounds_of(&prims);
         let Split::Sah(mid, sides) = sah_split(&mut prims, boxed, centroids, Costs::Primitives) else {
             panic!("5000 spread boxes must split by the SAH");
