@@ -212,10 +212,14 @@ fn children(prims: &mut [BuildPrim], base: usize, node: &Decided, costs: Costs) 
     let (mid, sides) = node.split.expect("an inner node");
     let at = node.start - base;
     let (left, right) = prims[at..at + node.len].split_at_mut(mid);
-    [
-        decide(left, node.start, node.depth + 1, costs, sides[0]),
-        decide(right, node.start + mid, node.depth + 1, costs, sides[1]),
-    ]
+    let mut left = || decide(left, node.start, node.depth + 1, costs, sides[0]);
+    let mut right = || decide(right, node.start + mid, node.depth + 1, costs, sides[1]);
+    if node.len > PARALLEL_WIDE {
+        // The splits above the parallel subtrees: both sides partitioned at once.
+        rayon::join(left, right).into()
+    } else {
+        [left(), right()]
+    }
 }
 
 /// The 4-wide tree over `prims` (primitives `0..` of the final order, reordered in place):
