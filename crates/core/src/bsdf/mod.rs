@@ -10,6 +10,7 @@
 //! both point away from the surface.
 
 mod beckmann;
+mod bump_shadowing;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -25,6 +26,7 @@ pub mod plastic_coat;
 mod thin_dielectric;
 mod transport;
 
+pub use bump_shadowing::BumpShadowing;
 pub use conductor::ConductorBxdf;
 pub use dielectric::DielectricBxdf;
 pub use diffuse::DiffuseBxdf;
@@ -136,6 +138,8 @@ pub struct Bsdf {
     frame: Frame,
     ng: Vec3,
     bxdf: Bxdf,
+    /// Mitsuba's shadowing of the light side under a normal or bump map.
+    shadowing: Option<BumpShadowing>,
 }
 
 impl Bsdf {
@@ -153,7 +157,22 @@ impl Bsdf {
             frame: Frame::from_zx(ns, dpdu),
             ng,
             bxdf,
+            shadowing: None,
         }
+    }
+
+    /// The BSDF with Mitsuba 3's shadowing of a normal or bump map ([`BumpShadowing`]):
+    /// every value for incident direction `wi` (the side the light comes from when
+    /// tracing radiance, as Mitsuba's `wo`) is scaled by the factor; densities are not.
+    #[must_use]
+    pub fn with_shadowing(mut self, shadowing: BumpShadowing) -> Self {
+        self.shadowing = Some(shadowing);
+        self
+    }
+
+    /// The shadowing factor for incident direction `wi` (1 without a map).
+    fn shadow(&self, wi: Vec3) -> f32 {
+        self.shadowing.map_or(1.0, |s| s.factor(wi))
     }
 
     /// True when the geometric surface sees `wo` and `wi` on the same side (a reflection).
@@ -200,7 +219,7 @@ impl Bsdf {
         if wo_l.z == 0.0 || !self.sides_agree(wo, wi, wo_l, wi_l) {
             return Rgb::BLACK;
         }
-        self.bxdf.f(wo_l, wi_l)
+        self.bxdf.f(wo_l, wi_l) * self.shadow(wi)
     }
 
     /// Sample an incident direction (world space) for outgoing `wo`; `None` when the
@@ -224,7 +243,7 @@ impl Bsdf {
                 if wo_l.z == 0.0 || !self.sides_agree(wo, wi, wo_l, wi_l) {
                     return Rgb::BLACK;
                 }
-                d.f_mode(wo_l, wi_l, mode)
+                d.f_mode(wo_l, wi_l, mode) * self.shadow(wi)
             }
             _ => self.f(wo, wi),
         }
@@ -248,7 +267,8 @@ impl Bsdf {
         if self.reflects_geometrically(wo, wi) != bs.flags.contains(BxdfFlags::REFLECTION) {
             return None;
         }
-        Some(BsdfSample { wi, ..bs })
+        let f = bs.f * self.shadow(wi);
+        Some(BsdfSample { wi, f, ..bs })
     }
 
     /// Density of [`Self::sample_f`] for world-space directions: zero where the light-leak
