@@ -104,6 +104,7 @@ fn main() -> Result<()> {
                 )
             }
             GeometryDesc::Disk { .. } => bail!("shape {i}: disks are not exported yet"),
+            GeometryDesc::Cylinder { .. } => bail!("shape {i}: cylinders are not exported yet"),
             GeometryDesc::BilinearMesh(_) => bail!("shape {i}: bilinear patches are not exported yet"),
         };
         shapes.push(format!(r#"{{{geometry},"material":{material},"emitter":{emitter}}}"#));

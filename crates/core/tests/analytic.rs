@@ -73,6 +73,29 @@ fn irradiance_under_a_sphere_light_matches_the_closed_form() {
     assert_mean_radiance(&d, expected);
 }
 
+/// An open cylinder light of radius R around the receiver's axis, from height a to b,
+/// emitting inwards: E = pi L (R^2 / (R^2 + a^2) - R^2 / (R^2 + b^2)).
+#[test]
+fn irradiance_inside_a_cylinder_light_matches_the_closed_form() {
+    let (mut d, expected) = receiver_inside_cylinder_light(0.5, 0.3, 1.4, 2.0, 0.8);
+    d.sampler.samples_per_pixel = 4096;
+    assert_mean_radiance(&d, expected);
+}
+
+/// A closed can (cylinder wall and two disk lids) emitting Le inwards with albedo a, seen
+/// from its centre: L = Le / (1 - a) at unbounded depth, by paths that bounce between the
+/// curved wall and the lids with light sampling on both.
+#[test]
+fn closed_emissive_can_has_radiance_le_over_one_minus_albedo() {
+    let le = Rgb::new(1.0, 2.0, 0.5);
+    let a = Rgb::new(0.5, 0.25, 0.75);
+    let mut d = emissive_can(1.0, 1.5, a, le);
+    d.integrator.max_depth = u32::MAX;
+    d.sampler.samples_per_pixel = 1024;
+    let expected = Rgb::new(le.r / (1.0 - a.r), le.g / (1.0 - a.g), le.b / (1.0 - a.b));
+    assert_mean_radiance(&d, expected);
+}
+
 /// A disk light of radius R at height h on the receiver's axis, facing down:
 /// E = pi L R^2 / (R^2 + h^2).
 #[test]

@@ -561,3 +561,97 @@ fn films_splat_through_filters_wider_than_the_pixel_box() {
     // hdrfilm's default filter is the Gaussian.
     assert_eq!(with(""), Reconstruction::FilterSplatting);
 }
+
+/// The cylinder of the first shape of `body`, built as the renderer will build it.
+fn first_cylinder(body: &str) -> (mcrender_core::shape::Cylinder, bool) {
+    let l = load_text(body).unwrap();
+    let s = &l.description.shapes[0];
+    let GeometryDesc::Cylinder {
+        radius,
+        z_min,
+        z_max,
+        phi_max,
+        world_from_object,
+    } = s.geometry
+    else {
+        panic!("not a cylinder: {:?}", s.geometry)
+    };
+    let c = mcrender_core::shape::Cylinder::new(radius, z_min, z_max, phi_max, world_from_object, s.flip_normals);
+    (c, s.flip_normals)
+}
+
+/// Where a ray from `o` along `d` meets the cylinder: point, normal and uv.
+fn cylinder_hit(c: &mcrender_core::shape::Cylinder, o: Vec3, d: Vec3) -> (Vec3, Vec3, [f32; 2]) {
+    let ray = mcrender_core::math::Ray::new(o, d);
+    let hit = c.intersect(&ray, f32::INFINITY).expect("a hit");
+    let si = c.interaction(&ray, &hit);
+    (si.p(), si.n(), si.uv.to_array())
+}
+
+/// Mitsuba's cylinder: the segment p0..p1 (default (0,0,0)..(0,0,1)), radius (1), placed
+/// by to_world, open, normals outwards unless flipped; uv = (phi / 2 pi, 1 - h / |p1 - p0|)
+/// (Mitsuba's v flipped, as for every Mitsuba shape here).
+#[test]
+fn cylinder_parameters_defaults_and_uv() {
+    let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-5;
+    // Defaults: unit radius around +z from 0 to 1.
+    let (c, flip) = first_cylinder("<shape type=\"cylinder\"/>");
+    assert!(!flip);
+    assert!((c.area() - std::f32::consts::TAU).abs() < 1e-5);
+    let (p, n, uv) = cylinder_hit(&c, Vec3::new(5.0, 0.0, 0.25), -Vec3::X);
+    assert!(close(p, Vec3::new(1.0, 0.0, 0.25)) && close(n, Vec3::X), "{p} {n}");
+    assert!((uv[0] - 0.0).abs() < 1e-5 && (uv[1] - 0.75).abs() < 1e-5, "{uv:?}");
+    // Nothing above p1 or below p0.
+    assert!(c
+        .intersect(
+            &mcrender_core::math::Ray::new(Vec3::new(5.0, 0.0, 1.1), -Vec3::X),
+            f32::INFINITY
+        )
+        .is_none());
+    // p0, p1, radius and to_world; flipped normals.
+    let (c, flip) = first_cylinder(
+        r#"<shape type="cylinder">
+             <point name="p0" x="1" y="0" z="0"/><point name="p1" x="1" y="0" z="2"/>
+             <float name="radius" value="0.5"/><boolean name="flip_normals" value="true"/>
+             <transform name="to_world"><translate y="3"/></transform>
+           </shape>"#,
+    );
+    assert!(flip);
+    assert!((c.area() - 2.0 * std::f32::consts::PI).abs() < 1e-5, "{}", c.area());
+    // Frame of +z: s = +x, t = +y, so phi = 90 degrees is +y: u = 1/4; h = 0.5 of 2.
+    let (p, n, uv) = cylinder_hit(&c, Vec3::new(1.0, 10.0, 0.5), -Vec3::Y);
+    assert!(close(p, Vec3::new(1.0, 3.5, 0.5)) && close(n, -Vec3::Y), "{p} {n}");
+    assert!((uv[0] - 0.25).abs() < 1e-5 && (uv[1] - 0.75).abs() < 1e-5, "{uv:?}");
+    // A slanted axis: the surface is at distance radius from the segment.
+    let (c, _) = first_cylinder(
+        r#"<shape type="cylinder"><point name="p0" x="0" y="0" z="0"/><point name="p1" x="1" y="1" z="0"/>
+           <float name="radius" value="0.25"/></shape>"#,
+    );
+    let (p, n, _) = cylinder_hit(&c, Vec3::new(0.5, 0.5, 3.0), -Vec3::Z);
+    assert!(close(p, Vec3::new(0.5, 0.5, 0.25)) && close(n, Vec3::Z), "{p} {n}");
+}
+
+#[test]
+fn malformed_cylinders_have_file_line_col() {
+    let e = err("<shape type=\"cylinder\">\n  <float name=\"radius\" value=\"0\"/>\n</shape>");
+    assert_eq!(e.kind, SceneErrorKind::Invalid);
+    assert!(
+        e.to_string().contains("s.xml:3:3: cylinder radius 0 must be positive"),
+        "{e}"
+    );
+    let e = err("<shape type=\"cylinder\">\n  <point name=\"p0\" x=\"1\" y=\"2\" z=\"3\"/>\n  <point name=\"p1\" x=\"1\" y=\"2\" z=\"3\"/>\n</shape>");
+    assert_eq!(e.kind, SceneErrorKind::Invalid);
+    assert!(e.to_string().contains("s.xml:4:3: cylinder p0"), "{e}");
+    assert!(e.to_string().contains("must be distinct finite points"), "{e}");
+    let e = err("<shape type=\"cylinder\">\n  <float name=\"radius\" value=\"wide\"/>\n</shape>");
+    assert!(e.location.line == 3, "{e}");
+    // An unknown parameter is a warning with its location.
+    let l = load_text("<shape type=\"cylinder\">\n  <float name=\"height\" value=\"2\"/>\n</shape>").unwrap();
+    assert!(
+        l.warnings
+            .iter()
+            .any(|w| w.contains("height") && w.contains("s.xml:3:3")),
+        "{:?}",
+        l.warnings
+    );
+}

@@ -93,6 +93,32 @@ fn disk_parameters_and_defaults() {
     assert!(!s.description.shapes[0].flip_normals);
 }
 
+#[test]
+fn cylinder_parameters_and_defaults() {
+    let s = load(
+        "WorldBegin\nTranslate 0 0 1\nShape \"cylinder\"\nReverseOrientation\nShape \"cylinder\" \"float radius\" 2 \
+         \"float zmin\" 3 \"float zmax\" 0.5 \"float phimax\" 400\nScale 1 1 -1\nShape \"cylinder\" \"float phimax\" 90",
+    );
+    let cylinder = |i: usize| match &s.description.shapes[i].geometry {
+        GeometryDesc::Cylinder {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+            world_from_object,
+        } => (*radius, *z_min, *z_max, *phi_max, world_from_object.m),
+        other => panic!("not a cylinder: {other:?}"),
+    };
+    let translate = Mat4::from_translation(Vec3::Z);
+    assert_eq!(cylinder(0), (1.0, -1.0, 1.0, std::f32::consts::TAU, translate));
+    // zmin > zmax is reordered, phimax clamped to 360, as pbrt-v4 does.
+    assert_eq!(cylinder(1), (2.0, 0.5, 3.0, std::f32::consts::TAU, translate));
+    assert_eq!(cylinder(2).3, std::f32::consts::FRAC_PI_2);
+    // ReverseOrientation flips; a mirroring transform flips back (pbrt-v4's rule).
+    let flips: Vec<bool> = s.description.shapes.iter().map(|s| s.flip_normals).collect();
+    assert_eq!(flips, [false, true, false]);
+}
+
 /// A planar patch becomes two triangles over its four corners, facing pbrt-v4's
 /// `dpdu x dpdv`, with the patch's (u, v) at the corners when no `uv` is given.
 #[test]

@@ -69,8 +69,8 @@ fn unknown_and_unsupported_shapes() {
         "scene.pbrt:2:1: unknown shape \"cube\""
     );
     assert_eq!(
-        error("WorldBegin\nShape \"cylinder\""),
-        "scene.pbrt:2:1: shape \"cylinder\" is not supported yet"
+        error("WorldBegin\nShape \"loopsubdiv\""),
+        "scene.pbrt:2:1: shape \"loopsubdiv\" is not supported yet"
     );
     assert_eq!(kind("WorldBegin\nShape \"curve\""), SceneErrorKind::Unsupported);
 }
@@ -88,6 +88,34 @@ fn malformed_disks() {
     assert_eq!(
         error("WorldBegin\nShape \"disk\" \"float phimax\" 0"),
         "scene.pbrt:2:14: disk phimax must be positive"
+    );
+}
+
+#[test]
+fn malformed_cylinders() {
+    assert_eq!(
+        error("WorldBegin\nShape \"cylinder\" \"float radius\" 0"),
+        "scene.pbrt:2:18: cylinder radius must be positive, found 0"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"cylinder\" \"float zmin\" 0.5 \"float zmax\" 0.5"),
+        "scene.pbrt:2:35: cylinder zmin and zmax must be finite and differ, found 0.5 and 0.5"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"cylinder\" \"float zmin\" 1"),
+        "scene.pbrt:2:18: cylinder zmin and zmax must be finite and differ, found 1 and 1"
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"cylinder\" \"float phimax\" -10"),
+        "scene.pbrt:2:18: cylinder phimax must be positive"
+    );
+    assert_eq!(
+        kind("WorldBegin\nShape \"cylinder\" \"float radius\" -1"),
+        SceneErrorKind::Invalid
+    );
+    assert_eq!(
+        error("WorldBegin\nShape \"cylinder\" \"string radius\" \"big\""),
+        "scene.pbrt:2:18: parameter \"string radius\" of Shape \"cylinder\" has the wrong type: expected \"float radius\""
     );
 }
 

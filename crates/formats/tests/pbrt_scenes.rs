@@ -65,7 +65,10 @@ fn check_cornell(loaded: &LoadedScene) {
         .iter()
         .map(|s| match &s.geometry {
             GeometryDesc::TriangleMesh(m) => m.indices.len() / 3,
-            GeometryDesc::Sphere { .. } | GeometryDesc::Disk { .. } | GeometryDesc::BilinearMesh(_) => 0,
+            GeometryDesc::Sphere { .. }
+            | GeometryDesc::Disk { .. }
+            | GeometryDesc::Cylinder { .. }
+            | GeometryDesc::BilinearMesh(_) => 0,
         })
         .sum();
     assert_eq!(total_triangles, 5 * 2 + 2 * 12 + 2);

@@ -9,7 +9,7 @@ use crate::light::{scene_center, scene_radius, SpotFalloff};
 use crate::math::{Bounds3, Mat4, Transform, UVec2};
 use crate::sampling::chi2::{suite_seed, Chi2Test, RectGrid, SphereGrid, SIGNIFICANCE};
 use crate::sampling::Pcg32;
-use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
+use crate::shape::{BilinearMesh, BilinearPatch, Cylinder, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 use crate::texture::FloatTexture;
 
 fn bounds() -> Bounds3 {
@@ -70,6 +70,9 @@ fn all_lights() -> Vec<(Light, &'static str, f32)> {
     };
     let disk_m = Mat4::from_translation(Vec3::new(0.2, 0.1, 1.0)) * Mat4::from_rotation_y(0.4);
     let spot_m = Mat4::from_translation(Vec3::new(0.5, 0.5, 1.0)) * Mat4::from_rotation_x(0.7);
+    let cylinder_m = Mat4::from_translation(Vec3::new(1.0, -0.5, 1.0))
+        * Mat4::from_rotation_y(0.5)
+        * Mat4::from_scale(Vec3::new(1.2, 0.7, 1.0));
     let mut lights = vec![
         (area(triangle(), false, None), "triangle", 1.0),
         (area(triangle(), true, None), "two-sided triangle", 1.0),
@@ -95,6 +98,15 @@ fn all_lights() -> Vec<(Light, &'static str, f32)> {
                 None,
             ),
             "annulus sector",
+            1.0,
+        ),
+        (
+            area(
+                Shape::Cylinder(Cylinder::new(0.6, -0.4, 0.7, 1.5 * PI, transform(cylinder_m), false)),
+                false,
+                None,
+            ),
+            "elliptic cut cylinder",
             1.0,
         ),
         (area(saddle(), false, None), "bilinear patch", 1.0),
@@ -334,8 +346,10 @@ fn scene_disk_positions_are_uniform() {
 fn area_light_positions_have_density_one_over_area() {
     for (light, label, _) in all_lights() {
         let Light::DiffuseArea(a) = &light else { continue };
-        if matches!(a.shape, Shape::Bilinear(_)) {
-            continue; // a curved patch is not sampled uniformly; its pdf is checked above
+        if matches!(a.shape, Shape::Bilinear(_) | Shape::Cylinder(_)) {
+            // A curved patch and an elliptic cylinder are not sampled uniformly; their pdfs
+            // are checked above (and the cylinder's in shape/cylinder_tests.rs).
+            continue;
         }
         let s = light.sample_le(Vec2::new(0.2, 0.7), Vec2::new(0.6, 0.1)).unwrap();
         let expected = 1.0 / a.shape.area();

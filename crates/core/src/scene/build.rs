@@ -17,7 +17,7 @@ use crate::light::{
 };
 use crate::material::{check_finite, check_non_negative, InvalidParameter, Material};
 use crate::math::{Vec2, Vec3};
-use crate::shape::{BilinearMesh, BilinearPatch, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
+use crate::shape::{BilinearMesh, BilinearPatch, Cylinder, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 use crate::texture::effective_alpha;
 
 /// Largest image side accepted.
@@ -241,6 +241,28 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
                 }
                 check_finite("disk transform", &world_from_object.m.to_cols_array())?;
             }
+            GeometryDesc::Cylinder {
+                radius,
+                z_min,
+                z_max,
+                phi_max,
+                world_from_object,
+            } => {
+                let what = format!("cylinder (shape {i})");
+                if !(*radius > 0.0 && radius.is_finite()) {
+                    return Err(invalid(what, format!("expected radius > 0, found {radius}")));
+                }
+                if !(z_min.is_finite() && z_max.is_finite() && z_min < z_max) {
+                    return Err(invalid(
+                        what,
+                        format!("expected finite zmin < zmax, found {z_min} and {z_max}"),
+                    ));
+                }
+                if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
+                    return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
+                }
+                check_finite("cylinder transform", &world_from_object.m.to_cols_array())?;
+            }
         }
     }
     Ok(())
@@ -351,6 +373,20 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
             *height,
             *radius,
             *inner_radius,
+            *phi_max,
+            *world_from_object,
+            s.flip_normals,
+        ))],
+        GeometryDesc::Cylinder {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+            world_from_object,
+        } => vec![Shape::Cylinder(Cylinder::new(
+            *radius,
+            *z_min,
+            *z_max,
             *phi_max,
             *world_from_object,
             s.flip_normals,

@@ -348,6 +348,21 @@ pub enum GeometryDesc {
         /// World-from-object transform.
         world_from_object: Transform,
     },
+    /// An open cylinder of `radius` around the z axis of its object space, from `z_min` to
+    /// `z_max`, swept from azimuth 0 to `phi_max` (pbrt-v4 `cylinder`). Its normal points
+    /// away from the axis.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Lower end (pbrt `zmin`).
+        z_min: f32,
+        /// Upper end (pbrt `zmax`), above `z_min`.
+        z_max: f32,
+        /// Angular extent in radians, in `(0, 2 pi]`.
+        phi_max: f32,
+        /// World-from-object transform.
+        world_from_object: Transform,
+    },
 }
 
 impl GeometryDesc {

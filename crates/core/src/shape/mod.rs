@@ -2,6 +2,7 @@
 //! and uniform-area sampling for area lights.
 
 mod bilinear;
+mod cylinder;
 mod disk;
 mod interaction;
 mod mesh;
@@ -9,6 +10,7 @@ mod sphere;
 mod triangle;
 
 pub use bilinear::BilinearPatch;
+pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use interaction::{Interaction, MeshPoint, SurfaceInteraction};
 pub use mesh::{BilinearMesh, TriangleMesh};
@@ -36,7 +38,7 @@ pub struct ShapeHit {
     /// Ray parameter of the hit.
     pub t: f32,
     /// Barycentrics (triangles), the patch's `(u, v, 0)` (bilinear patches) or the
-    /// object-space hit point (spheres, disks).
+    /// object-space hit point (spheres, disks, cylinders).
     pub data: [f32; 3],
 }
 
@@ -49,6 +51,8 @@ pub enum Shape {
     Sphere(Sphere),
     /// A disk, annulus or sector.
     Disk(Disk),
+    /// An open cylinder, possibly cut in azimuth.
+    Cylinder(Cylinder),
     /// One bilinear patch of a mesh.
     Bilinear(BilinearPatch),
 }
@@ -60,6 +64,7 @@ macro_rules! dispatch {
             Shape::Triangle($s) => $e,
             Shape::Sphere($s) => $e,
             Shape::Disk($s) => $e,
+            Shape::Cylinder($s) => $e,
             Shape::Bilinear($s) => $e,
         }
     };
@@ -90,7 +95,7 @@ impl Shape {
         dispatch!(self, s => s.area())
     }
 
-    /// A point uniformly distributed by area (exactly so for triangles, disks, uniformly
+    /// A point uniformly distributed by area (exactly so for triangles, disks, cylinders, uniformly
     /// scaled spheres and parallelogram patches; the returned pdf is always the true
     /// density).
     #[must_use]

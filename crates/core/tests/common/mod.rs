@@ -286,6 +286,70 @@ pub fn receiver_under_disk_light(r: f32, h: f32, l: f32, rho: f32) -> (SceneDesc
     (d, Rgb::splat(rho / PI * (PI * l * r * r / (r * r + h * h))))
 }
 
+/// The receiver of [`add_receiver`] (albedo `rho`) seen by [`aim_at_receiver`], direct
+/// light only, on the axis of an open cylinder of radius `r` spanning heights `a..b` above
+/// it (world `y`), emitting `l` inwards. A wall point at height `y` is seen at polar angle
+/// `theta` with `tan theta = r / y`, so `E = L int cos dw = pi L (sin^2 theta_a -
+/// sin^2 theta_b) = pi L (r^2 / (r^2 + a^2) - r^2 / (r^2 + b^2))`; the radiance is
+/// `rho / pi E`.
+pub fn receiver_inside_cylinder_light(r: f32, a: f32, b: f32, l: f32, rho: f32) -> (SceneDescription, Rgb) {
+    let mut d = empty_scene();
+    add_receiver(&mut d, rho);
+    // Object z along world y.
+    let world_from_object = Transform::new(Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2)).unwrap();
+    let cylinder = GeometryDesc::Cylinder {
+        radius: r,
+        z_min: a,
+        z_max: b,
+        phi_max: 2.0 * PI,
+        world_from_object,
+    };
+    add_emitter(&mut d, cylinder, Rgb::splat(l));
+    d.shapes.last_mut().expect("the cylinder").flip_normals = true;
+    aim_at_receiver(&mut d);
+    d.integrator.max_depth = 1;
+    let e = PI * l * (r * r / (r * r + a * a) - r * r / (r * r + b * b));
+    (d, Rgb::splat(rho / PI * e))
+}
+
+/// A closed can (an open cylinder of radius `r` from `z = -h` to `h` with two disks for
+/// lids) of albedo `albedo`, every part emitting `le` inwards, the camera at its centre:
+/// as inside an emissive sphere, L = le / (1 - albedo) at unbounded depth.
+pub fn emissive_can(r: f32, h: f32, albedo: Rgb, le: Rgb) -> SceneDescription {
+    let mut d = inside_sphere_scene(1.0, albedo, None, false);
+    d.shapes.clear();
+    let emission = Some(AreaLightDesc {
+        radiance: le,
+        two_sided: false,
+        power: None,
+    });
+    let lid = |height: f32| GeometryDesc::Disk {
+        height,
+        radius: r,
+        inner_radius: 0.0,
+        phi_max: 2.0 * PI,
+        world_from_object: Transform::IDENTITY,
+    };
+    let cylinder = GeometryDesc::Cylinder {
+        radius: r,
+        z_min: -h,
+        z_max: h,
+        phi_max: 2.0 * PI,
+        world_from_object: Transform::IDENTITY,
+    };
+    // Inwards: the wall and the top lid flipped; the bottom lid's +z already faces in.
+    for (geometry, flip_normals) in [(cylinder, true), (lid(h), true), (lid(-h), false)] {
+        d.shapes.push(ShapeDesc {
+            geometry,
+            material: 1,
+            area_light: emission,
+            flip_normals,
+            alpha: None,
+        });
+    }
+    d
+}
+
 /// Assert that an estimate `(mean, standard error)` per channel is `expected` within 4
 /// standard errors (and a relative 1e-5 for rounding).
 pub fn assert_close(label: &str, (mean, se): ([f64; 3], [f64; 3]), expected: Rgb) {

@@ -1,5 +1,5 @@
-//! Shapes: `obj`, `ply`, `sphere`, `rectangle`, `disk`, `cube`, `shapegroup` and
-//! `instance`, each with an optional BSDF (nested or `<ref>`; Mitsuba's default is a
+//! Shapes: `obj`, `ply`, `sphere`, `rectangle`, `disk`, `cube`, `cylinder`, `shapegroup`
+//! and `instance`, each with an optional BSDF (nested or `<ref>`; Mitsuba's default is a
 //! diffuse 0.5) and area `emitter`.
 //!
 //! Texture coordinates are stored as pbrt's (`v` up), which are Mitsuba's with `v`
@@ -8,7 +8,7 @@
 //! The `bitmap` texture maps between the two (see `textures`).
 //!
 //! Normals: Mitsuba's triangles face `(p1 - p0) x (p2 - p0)` whatever the transform's
-//! handedness, spheres face outwards; `flip_normals` flips both.
+//! handedness, spheres and cylinders face outwards; `flip_normals` flips them all.
 
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{AreaLightDesc, GeometryDesc, InstanceDesc, ObjectDesc, ShapeDesc, TriangleMeshDesc};
@@ -204,10 +204,11 @@ impl Builder {
                 phi_max: std::f32::consts::TAU,
                 world_from_object: transform,
             },
+            "cylinder" => cylinder(el, &mut p, to_world)?,
             _ => {
                 return Err(Self::unsupported(
                     el,
-                    " (shapes: obj, ply, sphere, rectangle, disk, cube, shapegroup, instance)",
+                    " (shapes: obj, ply, sphere, rectangle, disk, cube, cylinder, shapegroup, instance)",
                 ))
             }
         };
@@ -236,6 +237,53 @@ impl Builder {
         self.finish(&p);
         Ok(())
     }
+}
+
+/// Mitsuba's `cylinder`: radius `radius` (1) around the segment from `p0` (origin) to `p1`
+/// (`+z`), open, placed by `to_world`. Mitsuba builds its frame as
+/// `to_world * translate(p0) * to_frame(Frame(d / |d|)) * scale(r, r, |d|)` with
+/// `uv = (phi / 2 pi, h / |d|)` for the height `h` along `d`; `Frame` completes `d` by
+/// Duff et al.'s orthonormal basis (JCGT 2017), as glam's `any_orthonormal_pair` does, so
+/// the azimuth (`u`) starts where Mitsuba's does. Our cylinder keeps the radius out of the
+/// transform and runs `z` from `-|d|` to 0 through a mirror `z -> -z`, so that pbrt's
+/// `v = (z - z_min) / (z_max - z_min)` is `1 - h / |d|`: Mitsuba's `v` flipped, the
+/// convention of every Mitsuba shape here (see the module doc). The normal stays outwards
+/// through the mirror (it is transformed as a normal). A non-uniform `to_world` gives the
+/// exact elliptic cylinder, where Mitsuba warns and keeps one radius.
+fn cylinder(el: &Element, p: &mut Props, to_world: Mat4) -> Result<GeometryDesc, SceneError> {
+    let radius = p.float("radius", 1.0)?;
+    let loc_of = |p: &mut Props, name: &str| p.get(name).map_or(el.loc.clone(), |e| e.loc.clone());
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Err(SceneError::invalid(
+            &loc_of(p, "radius"),
+            format!("cylinder radius {radius} must be positive"),
+        ));
+    }
+    let p0 = p.vec3("p0")?.unwrap_or(Vec3::ZERO);
+    let p1 = p.vec3("p1")?.unwrap_or(Vec3::Z);
+    let d = p1 - p0;
+    let length = d.length();
+    if !(length > 0.0 && length.is_finite()) {
+        let name = if p.has("p1") { "p1" } else { "p0" };
+        return Err(SceneError::invalid(
+            &loc_of(p, name),
+            format!("cylinder p0 {p0} and p1 {p1} must be distinct finite points"),
+        ));
+    }
+    // `+ 0.0` turns a -0 into +0: Mitsuba's sign(-0) is +1, glam's signum(-0) is -1.
+    let axis = d / length + Vec3::ZERO;
+    let (s, t) = axis.any_orthonormal_pair();
+    let frame = Mat4::from_cols(s.extend(0.0), t.extend(0.0), axis.extend(0.0), glam::Vec4::W);
+    let m = to_world * Mat4::from_translation(p0) * frame * Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0));
+    let world_from_object =
+        Transform::new(m).ok_or_else(|| SceneError::invalid(&el.loc, "the cylinder's to_world is singular"))?;
+    Ok(GeometryDesc::Cylinder {
+        radius,
+        z_min: -length,
+        z_max: 0.0,
+        phi_max: std::f32::consts::TAU,
+        world_from_object,
+    })
 }
 
 /// `v -> 1 - v` for every texture coordinate.

@@ -14,7 +14,7 @@
 //! `MakeNamedMaterial` (see `materials`), `Texture` (constant, scale, mix, checkerboard,
 //! imagemap; see `textures`) and `"texture ..."` parameters, `AreaLightSource "diffuse"`,
 //! `LightSource` point/spot/distant/infinite (see `lights`), shapes `trianglemesh`,
-//! `plymesh`, `sphere`, `disk`, `bilinearmesh` with `alpha`, `Include`/`Import`,
+//! `plymesh`, `sphere`, `disk`, `cylinder`, `bilinearmesh` with `alpha`, `Include`/`Import`,
 //! `ObjectBegin`/`ObjectEnd`/`ObjectInstance`, `Attribute`, `Option "seed"`, `ColorSpace
 //! "srgb"`. Other materials, texture classes, lights, shapes, media and motion blur are
 //! errors naming the feature; the full list is `docs/pbrt-support.md`.

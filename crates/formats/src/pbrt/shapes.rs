@@ -1,8 +1,8 @@
-//! Shapes: `trianglemesh`, `plymesh`, `sphere`, `disk` and `bilinearmesh` (all-planar
-//! meshes as triangle pairs, others as bilinear patches). Meshes are moved to world space
-//! here (points by the CTM, normals by its inverse transpose, negated under
-//! `ReverseOrientation` as pbrt does, then normalised); spheres and disks keep their
-//! transform. Every shape takes an alpha cut-out (`"float alpha"` or `"texture alpha"`).
+//! Shapes: `trianglemesh`, `plymesh`, `sphere`, `disk`, `cylinder` and `bilinearmesh`
+//! (all-planar meshes as triangle pairs, others as bilinear patches). Meshes are moved to
+//! world space here (points by the CTM, normals by its inverse transpose, negated under
+//! `ReverseOrientation` as pbrt does, then normalised); spheres, disks and cylinders keep
+//! their transform. Every shape takes an alpha cut-out (`"float alpha"` or `"texture alpha"`).
 
 use glam::{Vec2, Vec3};
 use mcrender_core::math::Transform;
@@ -26,8 +26,8 @@ impl SceneBuilder {
     pub fn shape(&mut self, kind: &str, params: &mut ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_world("Shape", loc)?;
         match kind {
-            "trianglemesh" | "plymesh" | "sphere" | "disk" | "bilinearmesh" => {}
-            "cylinder" | "loopsubdiv" | "curve" => {
+            "trianglemesh" | "plymesh" | "sphere" | "disk" | "cylinder" | "bilinearmesh" => {}
+            "loopsubdiv" | "curve" => {
                 return Err(SceneError::unsupported(
                     loc,
                     format!("shape \"{kind}\" is not supported yet"),
@@ -59,6 +59,7 @@ impl SceneBuilder {
                 to_world(mesh, &world_from_object, reverse, loc)?
             }
             "disk" => disk(params, world_from_object)?,
+            "cylinder" => cylinder(params, world_from_object)?,
             _ => self.sphere(params, world_from_object)?,
         };
         // pbrt-v4 `scene.cpp`: a `texture alpha`, else a `float alpha` below 1; opaque
@@ -288,6 +289,39 @@ fn disk(params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc,
         height,
         radius,
         inner_radius,
+        phi_max: phi_max.to_radians(),
+        world_from_object,
+    })
+}
+
+/// `Shape "cylinder"`: `radius` (1), `zmin` (-1), `zmax` (1), `phimax` (360 degrees).
+/// pbrt-v4 accepts `zmin` and `zmax` in either order and clamps `phimax` to `[0, 360]`.
+fn cylinder(params: &ParamSet, world_from_object: Transform) -> Result<GeometryDesc, SceneError> {
+    let at = |name: &str| params.get(name).map_or(&params.loc, |p| &p.loc).clone();
+    let radius = params.float("radius", 1.0)?;
+    let (z0, z1) = (params.float("zmin", -1.0)?, params.float("zmax", 1.0)?);
+    let phi_max = params.float("phimax", 360.0)?;
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Err(SceneError::invalid(
+            &at("radius"),
+            format!("cylinder radius must be positive, found {radius}"),
+        ));
+    }
+    if !(z0.is_finite() && z1.is_finite()) || z0 == z1 {
+        let name = if params.get("zmax").is_some() { "zmax" } else { "zmin" };
+        return Err(SceneError::invalid(
+            &at(name),
+            format!("cylinder zmin and zmax must be finite and differ, found {z0} and {z1}"),
+        ));
+    }
+    let phi_max = phi_max.clamp(0.0, 360.0);
+    if phi_max <= 0.0 {
+        return Err(SceneError::invalid(&at("phimax"), "cylinder phimax must be positive"));
+    }
+    Ok(GeometryDesc::Cylinder {
+        radius,
+        z_min: z0.min(z1),
+        z_max: z0.max(z1),
         phi_max: phi_max.to_radians(),
         world_from_object,
     })
