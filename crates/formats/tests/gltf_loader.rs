@@ -298,8 +298,9 @@ fn textures_factors_emission_and_transmission_become_materials() {
     assert_eq!(d.shapes.len(), 3);
     // The normal texture wraps the material: texels linear, x and y of 2 c - 1 times
     // the scale 0.5 (mr.png's first texel is (0, 255, 128)).
-    let MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }) =
-        &d.materials[d.shapes[0].material as usize]
+    let MaterialDesc::NormalMap(NormalMapMaterial {
+        material, normal_map, ..
+    }) = &d.materials[d.shapes[0].material as usize]
     else {
         panic!("{:?}", d.materials)
     };

@@ -302,8 +302,9 @@ fn displacement_becomes_a_bump_map_and_normalmap_a_normal_map() {
     let s = load("Material \"conductor\" \"string normalmap\" \"n.png\"", tmp.path()).unwrap();
     assert!(!s.warnings.iter().any(|w| w.contains("ignored")), "{:?}", s.warnings);
     let d = &s.description;
-    let MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }) =
-        &d.materials[d.shapes[0].material as usize]
+    let MaterialDesc::NormalMap(NormalMapMaterial {
+        material, normal_map, ..
+    }) = &d.materials[d.shapes[0].material as usize]
     else {
         panic!("{:?}", d.materials)
     };

@@ -110,6 +110,15 @@ impl BumpMapMaterial {
         if ns.dot(si.n()) == 0.0 {
             return;
         }
+        if matches!(self.height, BumpHeight::Mitsuba { .. }) {
+            // Mitsuba 3.9, as for its normal maps (`MapStyle::Mitsuba`): a normal the ray
+            // sees from below is mirrored about the unperturbed one, and the light side is
+            // shadowed by the tilt.
+            if ns.dot(si.wo) < 0.0 {
+                ns = (n * (2.0 * n.dot(ns)) - ns).normalize();
+            }
+            si.unmapped_ns = Some(n);
+        }
         si.dpdu = (si.dp_du - ns * ns.dot(si.dp_du))
             .try_normalize()
             .unwrap_or_else(|| Frame::from_z(ns).x);

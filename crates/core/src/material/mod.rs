@@ -41,7 +41,7 @@ pub use diffuse::DiffuseMaterial;
 pub use diffuse_transmission::DiffuseTransmissionMaterial;
 pub use metallic_roughness::MetallicRoughnessMaterial;
 pub use mix::MixMaterial;
-pub use normal_map::NormalMapMaterial;
+pub use normal_map::{MapStyle, NormalMapMaterial};
 pub use plastic::PlasticMaterial;
 pub use thin_dielectric::ThinDielectricMaterial;
 

@@ -1,5 +1,5 @@
-//! Mitsuba 3's `normalmap`: another material with its shading normal replaced by a
-//! normal map.
+//! Mitsuba 3's `normalmap` (and pbrt-v4's `normalmap` parameter): another material with
+//! its shading normal replaced by a normal map.
 
 use super::checks::{check_reference, InvalidParameter};
 use super::MaterialId;
@@ -19,6 +19,22 @@ pub struct NormalMapMaterial {
     pub material: MaterialId,
     /// Linear RGB in [0, 1] per texel (a `raw` texture).
     pub normal_map: RgbTexture,
+    /// Whose rules beyond the frame apply.
+    pub style: MapStyle,
+}
+
+/// Whose rules a normal or bump map follows beyond moving the shading frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MapStyle {
+    /// pbrt-v4's (and glTF's): the frame only.
+    #[default]
+    Pbrt,
+    /// Mitsuba 3.9's, measured through its Python API (its BSDF values for a tilted map,
+    /// fitted exactly): where the incoming ray sees the mapped normal from below, the
+    /// normal is mirrored about the surface's own (`(x, y, z)` to `(-x, -y, z)` in the
+    /// shading frame); and the light side of the BSDF is shadowed by the tilt
+    /// ([`crate::bsdf::BumpShadowing`], recorded as `SurfaceInteraction::unmapped_ns`).
+    Mitsuba,
 }
 
 impl NormalMapMaterial {
@@ -32,9 +48,12 @@ impl NormalMapMaterial {
     pub fn apply(&self, si: &mut SurfaceInteraction) {
         let c = self.normal_map.evaluate(&TextureContext::at_point(si));
         let frame = Frame::from_zx(si.ns, si.dpdu);
-        let Some(n_local) = Vec3::new(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0).try_normalize() else {
+        let Some(mut n_local) = Vec3::new(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0).try_normalize() else {
             return;
         };
+        if self.style == MapStyle::Mitsuba && frame.from_local(n_local).dot(si.wo) < 0.0 {
+            n_local = Vec3::new(-n_local.x, -n_local.y, n_local.z);
+        }
         // The old tangent projected onto the new tangent plane.
         let s_local = (Vec3::X - n_local * n_local.x)
             .try_normalize()
@@ -43,6 +62,9 @@ impl NormalMapMaterial {
         let dpdu = frame.from_local(s_local).normalize();
         // Keep the shading normal on the side of the geometric one.
         if ns.dot(si.n()) * si.ns.dot(si.n()) > 0.0 {
+            if self.style == MapStyle::Mitsuba {
+                si.unmapped_ns = Some(si.ns);
+            }
             si.ns = ns;
             si.dpdu = dpdu;
         }
@@ -71,6 +93,7 @@ mod tests {
             MaterialDesc::NormalMap(NormalMapMaterial {
                 material: 3,
                 normal_map: c.into(),
+                style: MapStyle::Pbrt,
             })
         };
         // The identity map leaves the frame as it is.
@@ -97,5 +120,37 @@ mod tests {
             Some(3)
         );
         assert_eq!(s.ns, si.ns);
+    }
+
+    /// Mitsuba's style mirrors the mapped normal when the incoming ray sees it from below,
+    /// and records the normal before the map for the bump-terminator shadowing; pbrt's
+    /// does neither.
+    #[test]
+    fn mitsuba_maps_face_the_viewer_and_record_the_normal_they_moved() {
+        let tilt = Rgb::new(0.8, 0.5, 0.8); // local normal (1, 0, 1) / sqrt 2
+        let map = |style| NormalMapMaterial {
+            material: 0,
+            normal_map: tilt.into(),
+            style,
+        };
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        let mut base = hit();
+        base.ns = Vec3::Z;
+        base.intr.n = Vec3::Z;
+        base.dpdu = Vec3::X;
+        for (wo, mirrored) in [(Vec3::new(0.9, 0.0, 0.436), false), (Vec3::new(-0.9, 0.0, 0.436), true)] {
+            let mut si = base;
+            si.wo = wo.normalize();
+            map(MapStyle::Mitsuba).apply(&mut si);
+            let x = if mirrored { -h } else { h };
+            assert!((si.ns - Vec3::new(x, 0.0, h)).length() < 1e-5, "{wo}: {}", si.ns);
+            assert!(si.ns.dot(si.wo) > 0.0);
+            assert_eq!(si.unmapped_ns, Some(Vec3::Z));
+            let mut si = base;
+            si.wo = wo.normalize();
+            map(MapStyle::Pbrt).apply(&mut si);
+            assert!((si.ns - Vec3::new(h, 0.0, h)).length() < 1e-5, "{wo}: {}", si.ns);
+            assert_eq!(si.unmapped_ns, None);
+        }
     }
 }

@@ -22,6 +22,7 @@ pub fn hit() -> SurfaceInteraction {
         wo: Vec3::Z,
         t: 1.0,
         mesh: crate::shape::MeshPoint::default(),
+        unmapped_ns: None,
     }
 }
 

@@ -125,6 +125,7 @@ impl Instance {
             wo: -ray.d.normalize(),
             t: si.t,
             mesh: si.mesh,
+            unmapped_ns: None,
         }
     }
 }

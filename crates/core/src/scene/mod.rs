@@ -175,7 +175,12 @@ impl Scene {
     /// vertex; other materials skip that work.
     pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
         let m = self.resolve_material(material, si);
-        m.bsdf(si, &self.texture_context(m, si))
+        let bsdf = m.bsdf(si, &self.texture_context(m, si))?;
+        // A Mitsuba normal or bump map shadows the light side by its tilt.
+        Some(match si.unmapped_ns {
+            Some(before) => bsdf.with_shadowing(crate::bsdf::BumpShadowing::new(before, si.ns)),
+            None => bsdf,
+        })
     }
 
     /// The texture context of `m` at `si`: with the pixel footprint when `m` is textured.

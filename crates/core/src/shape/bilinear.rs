@@ -293,6 +293,7 @@ impl BilinearPatch {
             wo,
             t,
             mesh: crate::shape::MeshPoint::default(),
+            unmapped_ns: None,
         }
     }
 

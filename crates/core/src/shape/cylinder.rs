@@ -197,6 +197,7 @@ impl Cylinder {
             wo,
             t,
             mesh: crate::shape::MeshPoint::default(),
+            unmapped_ns: None,
         }
     }
 

@@ -145,6 +145,7 @@ impl Disk {
             wo,
             t,
             mesh: crate::shape::MeshPoint::default(),
+            unmapped_ns: None,
         }
     }
 

@@ -84,6 +84,10 @@ pub struct SurfaceInteraction {
     pub t: f32,
     /// The triangle and barycentrics of the hit on a mesh.
     pub mesh: MeshPoint,
+    /// Set by Mitsuba 3's normal and bump maps: the shading normal before the map moved it
+    /// to `ns`. Its divergence from `ns` shadows the light side of the BSDF (Mitsuba's
+    /// bump-terminator term, `crate::bsdf::BumpShadowing`); `None` otherwise.
+    pub unmapped_ns: Option<Vec3>,
 }
 
 impl SurfaceInteraction {

@@ -226,6 +226,7 @@ impl Sphere {
             wo,
             t,
             mesh: crate::shape::MeshPoint::default(),
+            unmapped_ns: None,
         }
     }
 

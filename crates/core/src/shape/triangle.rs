@@ -229,6 +229,7 @@ impl Triangle {
                 triangle: self.index,
                 b,
             },
+            unmapped_ns: None,
         }
     }
 

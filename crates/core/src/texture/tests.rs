@@ -293,6 +293,7 @@ fn plane_hit(d: f32, scale: f32) -> SurfaceInteraction {
         wo: -Vec3::Z,
         t: d,
         mesh: crate::shape::MeshPoint::default(),
+        unmapped_ns: None,
     }
 }
 

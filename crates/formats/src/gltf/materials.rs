@@ -23,7 +23,7 @@ use std::sync::Arc;
 
 use gltf::texture::WrappingMode;
 use mcrender_core::color::Rgb;
-use mcrender_core::material::{DielectricMaterial, MetallicRoughnessMaterial, NormalMapMaterial};
+use mcrender_core::material::{DielectricMaterial, MapStyle, MetallicRoughnessMaterial, NormalMapMaterial};
 use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc, MaterialId, RgbTexture};
 use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
 
@@ -176,7 +176,11 @@ impl<'a> Materials<'a> {
         let normal_mapped = normal_map.is_some();
         if let Some(normal_map) = normal_map {
             let material = (materials.len() - 1) as MaterialId;
-            materials.push(MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }));
+            materials.push(MaterialDesc::NormalMap(NormalMapMaterial {
+                material,
+                normal_map,
+                style: MapStyle::Pbrt,
+            }));
         }
         let c = Converted {
             material: (materials.len() - 1) as MaterialId,

@@ -43,7 +43,7 @@ use std::sync::Arc;
 use mcrender_core::bsdf::{Masking, MicrofacetModel, MicrofacetStyle, PlasticCoat};
 use mcrender_core::color::Rgb;
 use mcrender_core::material::{
-    BumpHeight, BumpMapMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial, MixMaterial,
+    BumpHeight, BumpMapMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial, MapStyle, MixMaterial,
     NormalMapMaterial, PlasticMaterial, ThinDielectricMaterial,
 };
 use mcrender_core::scene::MaterialDesc;
@@ -105,6 +105,7 @@ impl Builder {
                         material: self.add_material(MaterialDesc::NormalMap(NormalMapMaterial {
                             material: inner.material,
                             normal_map,
+                            style: MapStyle::Mitsuba,
                         })),
                         alpha: inner.alpha,
                     }

@@ -40,7 +40,7 @@
 
 use mcrender_core::material::{
     BumpHeight, BumpMapMaterial, CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial,
-    DiffuseMaterial, DiffuseTransmissionMaterial, MixMaterial, NormalMapMaterial, ThinDielectricMaterial,
+    DiffuseMaterial, DiffuseTransmissionMaterial, MapStyle, MixMaterial, NormalMapMaterial, ThinDielectricMaterial,
 };
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -454,6 +454,7 @@ pub(super) fn resolve_material(
                 FrameMap::NormalMap(normal_map) => MaterialDesc::NormalMap(NormalMapMaterial {
                     material,
                     normal_map: normal_map.clone(),
+                    style: MapStyle::Pbrt,
                 }),
             };
             Ok(intern_material(materials, ids, desc))
