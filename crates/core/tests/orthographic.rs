@@ -108,9 +108,17 @@ fn check_all(label: &str, mut d: SceneDescription, expected: Rgb, spp: [u32; 3])
         d.sampler.samples_per_pixel = spp[0];
         let out = render_desc(&d);
         assert_eq!(out.stats.nonfinite_samples, 0);
-        assert_close(&format!("{label}, lens {lens}, path"), mean_and_standard_error(&out), expected);
+        assert_close(
+            &format!("{label}, lens {lens}, path"),
+            mean_and_standard_error(&out),
+            expected,
+        );
         d.sampler.samples_per_pixel = spp[1];
-        assert_close(&format!("{label}, lens {lens}, light tracing"), light_traced(&d), expected);
+        assert_close(
+            &format!("{label}, lens {lens}, light tracing"),
+            light_traced(&d),
+            expected,
+        );
         d.sampler.samples_per_pixel = spp[2];
         assert_close(&format!("{label}, lens {lens}, BDPT"), bdpt(&d), expected);
     }
