@@ -22,7 +22,7 @@ pub struct CameraDesc {
     /// World-from-camera transform. Camera space is pbrt's: +x right in the image, +y up,
     /// looking down +z.
     pub world_from_camera: Transform,
-    /// Full field of view in degrees, spanning the shorter image axis.
+    /// Full field of view in degrees, spanning the shorter image axis (perspective only).
     pub fov_degrees: f32,
     /// Lens radius (0 = pinhole).
     pub lens_radius: f32,
