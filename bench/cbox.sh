@@ -49,21 +49,25 @@ rel_mse() { # image: relative MSE against the shared Mitsuba reference (12,800 s
 
 echo "Cornell box ${RES}x${RES}, ${SPP} spp, max depth 65, ${THREADS} threads; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%Y-%m-%dT%H:%MZ)"
 # Mitsuba's script uses its independent sampler and its path tracer's Russian roulette (from
-# the fifth bounce, survival min(max throughput, 0.95)): the `--rr mitsuba` row is like for
-# like. The first row is mcrender's default (pbrt-v4's roulette, from the second bounce),
-# the Sobol' row what the scene file asks for.
+# the fifth bounce, survival min(max throughput, 0.95)) and splats each sample through its
+# tent filter: the `splat rr=mitsuba` row is like for like. The first row is mcrender's
+# default (pbrt-v4's roulette, from the second bounce; filter sampling), the Sobol' row what
+# the scene file asks for.
 mc_line="$(run_mcrender mc-independent --sampler independent)"
 mc_rr_line="$(run_mcrender mc-independent-rr --sampler independent --rr mitsuba)"
 mc_sobol_line="$(run_mcrender mc-sobol --sampler sobol)"
+mc_splat_line="$(run_mcrender mc-splat-rr --sampler independent --rr mitsuba --reconstruction splat)"
 llvm_json="$(run_mitsuba llvm_ad_rgb || true)"
 scalar_json="$(run_mitsuba scalar_rgb || true)"
-errors="$(for f in mc-independent mc-independent-rr mc-sobol mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
+errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
 
-python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$llvm_json" "$scalar_json" <<'PY'
+python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$llvm_json" "$scalar_json" <<'PY'
 import json, math, re, sys
 res, spp, errors = int(sys.argv[1]), int(sys.argv[2]), [float(e) for e in sys.argv[3].split()]
-mc_lines, peer_lines = sys.argv[4:7], sys.argv[7:9]
-names = ["mcrender independent", "mcrender indep. rr=mitsuba", "mcrender sobol", "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
+mc_lines, peer_lines = sys.argv[4:8], sys.argv[8:10]
+names = ["mcrender independent", "mcrender indep. rr=mitsuba", "mcrender sobol", "mcrender splat rr=mitsuba",
+         "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
+llvm = len(mc_lines)
 times = []
 for line in mc_lines:
     m = re.search(r"in ([0-9.]+) s", line)
@@ -75,9 +79,9 @@ for js in peer_lines:
         times.append(json.loads(js)["wall_s"])
     except Exception:
         times.append(None)
-base_t = times[3]
+base_t = times[llvm]
 eff = [1 / (e * t) if t and e > 0 and math.isfinite(e) else None for e, t in zip(errors, times)]
-base_e = eff[3]
+base_e = eff[llvm]
 ratio = lambda a, b: f"{a / b:.2f}" if a and b else "n/a"
 # time / llvm: lower is faster; efficiency = 1 / (relMSE x time), over llvm's: higher is better.
 print(f"{'renderer':<28}{'time (s)':>9}{'M paths/s':>11}{'time / llvm':>13}{'relMSE':>11}{'efficiency / llvm':>19}")

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use mcrender_core::accel::Bvh;
+use mcrender_core::accel::WideBvh;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{Scene, SceneDescription};
 use mcrender_formats::pbrt::load_file;
@@ -41,7 +41,7 @@ fn bench_bvh_build(c: &mut Criterion) {
             }
         })
         .collect();
-    c.bench_function("bvh build 100k", |b| b.iter(|| Bvh::build(&bounds)));
+    c.bench_function("bvh build 100k", |b| b.iter(|| WideBvh::build(&bounds)));
 }
 
 criterion_group!(benches, bench_render, bench_bvh_build);

@@ -14,8 +14,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::accel::{Bvh, Isa, WideBvh};
-use mcrender_core::math::{Bounds3, Ray, Vec3};
+use mcrender_core::accel::{Isa, WideBvh};
+use mcrender_core::math::{Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 use mcrender_formats::ply::read_ply;
 use rayon::prelude::*;
@@ -32,15 +32,6 @@ pub enum Query {
     Closest,
     /// Whether anything is hit within `t_max` (shadow rays).
     Any,
-}
-
-/// Which hierarchy to trace (for side-by-side comparisons; `wide` is what renders use).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Accel {
-    /// The 4-wide BVH.
-    Wide,
-    /// The binary BVH, one triangle at a time.
-    Binary,
 }
 
 /// Options of `mcrender bench-rays`.
@@ -62,9 +53,6 @@ pub struct BenchRaysArgs {
     /// Write the hit distance of every ray (float32, little endian) to this file.
     #[arg(long, value_name = "OUT.bin")]
     pub hits: Option<PathBuf>,
-    /// The hierarchy to trace.
-    #[arg(long, value_enum, default_value_t = Accel::Wide)]
-    pub accel: Accel,
     /// Instruction set of the wide BVH's queries (default: the best this CPU has).
     #[arg(long, value_enum)]
     pub isa: Option<IsaArg>,
@@ -107,21 +95,16 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     let threads = pool.current_num_threads();
 
     let start = Instant::now();
-    let (mut accel, triangles) = pool.install(|| Traceable::build(args.accel, triangles));
+    let (mut bvh, triangles) = pool.install(|| build(triangles));
     let build_s = start.elapsed().as_secs_f64();
-    let kind = match &mut accel {
-        Traceable::Wide(w) => {
-            if let Some(isa) = args.isa {
-                w.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
-            }
-            format!("4-wide ({})", w.isa().name())
-        }
-        Traceable::Binary(_) => "binary".to_string(),
-    };
+    if let Some(isa) = args.isa {
+        bvh.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
+    }
     println!(
-        "mesh {}: {} triangles; {kind} BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
+        "mesh {}: {} triangles; 4-wide ({}) BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
         args.mesh.display(),
         triangles.len(),
+        bvh.isa().name(),
         build_s,
         if threads == 1 { "" } else { "s" },
         triangles.len() as f64 / build_s / 1e6
@@ -136,7 +119,7 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
                 .zip(rays.par_chunks(CHUNK))
                 .for_each(|(out, rays)| {
                     for (h, (ray, t_max)) in out.iter_mut().zip(rays) {
-                        *h = accel.trace(&triangles, args.query, ray, *t_max);
+                        *h = trace(&bvh, &triangles, args.query, ray, *t_max);
                     }
                 });
         });
@@ -163,45 +146,32 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     Ok(())
 }
 
-/// The hierarchy being measured.
-enum Traceable {
-    Wide(WideBvh),
-    Binary(Bvh),
+/// Build over `triangles`; they come back in the order the tree wants them (its leaf order,
+/// as the scene stores its primitives).
+fn build(triangles: Vec<Triangle>) -> (WideBvh, Vec<Triangle>) {
+    let mut bvh = WideBvh::build_with(triangles.len(), |i| triangles[i].bounds());
+    let triangles = bvh.reorder_by_leaves(triangles);
+    bvh.attach_triangles(|i| Some(triangles[i as usize].positions()));
+    (bvh, triangles)
 }
 
-impl Traceable {
-    /// Build over `triangles`; they come back in the order the tree wants them (the wide
-    /// tree's leaf order, as the scene stores its primitives).
-    fn build(accel: Accel, triangles: Vec<Triangle>) -> (Self, Vec<Triangle>) {
-        let bounds: Vec<Bounds3> = triangles.par_iter().map(Triangle::bounds).collect();
-        match accel {
-            Accel::Wide => {
-                let mut bvh = WideBvh::build(&bounds);
-                let triangles = bvh.reorder_by_leaves(triangles);
-                bvh.attach_triangles(|i| Some(triangles[i as usize].positions()));
-                (Self::Wide(bvh), triangles)
+/// Hit distance of one ray (closest) or 0 / +inf (any).
+fn trace(bvh: &WideBvh, triangles: &[Triangle], query: Query, ray: &Ray, t_max: f32) -> f32 {
+    match query {
+        Query::Closest => bvh
+            .closest_hit_triangles(
+                ray,
+                t_max,
+                |i, r, t| triangles[i as usize].intersect(r, t).map(|h| (h.t, h.t)),
+                |_, h| h.t,
+            )
+            .map_or(f32::INFINITY, |(_, t)| t),
+        Query::Any => {
+            if bvh.any_hit_triangles(ray, t_max, |i, r, t| triangles[i as usize].intersect(r, t).is_some()) {
+                0.0
+            } else {
+                f32::INFINITY
             }
-            Accel::Binary => (Self::Binary(Bvh::build(&bounds)), triangles),
-        }
-    }
-
-    /// Hit distance of one ray (closest) or 0 / +inf (any).
-    fn trace(&self, triangles: &[Triangle], query: Query, ray: &Ray, t_max: f32) -> f32 {
-        let test = |i: u32, r: &Ray, t: f32| triangles[i as usize].intersect(r, t).map(|h| (h.t, ()));
-        let blocked = |i: u32, r: &Ray, t: f32| triangles[i as usize].intersect(r, t).is_some();
-        let closest = |t: Option<f32>| t.unwrap_or(f32::INFINITY);
-        let any = |b: bool| if b { 0.0 } else { f32::INFINITY };
-        match (self, query) {
-            (Self::Wide(w), Query::Closest) => closest(
-                w.closest_hit_triangles(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)), |_, h| h.t)
-                    .map(|(_, t)| t),
-            ),
-            (Self::Wide(w), Query::Any) => any(w.any_hit_triangles(ray, t_max, blocked)),
-            (Self::Binary(b), Query::Closest) => closest(
-                b.closest_hit(ray, t_max, |i, r, t| test(i, r, t).map(|(t, ())| (t, t)))
-                    .map(|(_, t)| t),
-            ),
-            (Self::Binary(b), Query::Any) => any(b.any_hit(ray, t_max, blocked)),
         }
     }
 }

@@ -21,7 +21,9 @@
 //! The `film` section holds, per pixel in row-major order, `sum_w`, `sum_wl[3]`,
 //! `sum_wl2[3]` (f64) and `count` (u64), then per pixel the splat sums (3 i128, fixed point
 //! in units of 2^-64, as `SplatSum` keeps them), all little endian: the accumulators
-//! themselves, so the resumed render continues them exactly. A
+//! themselves, so the resumed render continues them exactly. A film of filter splatting
+//! adds a section `film.filtered` right after it: per pixel the 11 i128 of its
+//! `FilteredSums::to_fixed` (sum w, sum w^2, sum w L, sum w^2 L, sum (w L)^2). A
 //! JSON header keeps the file self-describing and easy to inspect; raw floats keep it small
 //! and exact (no decimal round trip).
 //!
@@ -38,7 +40,8 @@
 //!
 //! The fingerprint is a SHA-256 over the binary's version, the scene file's bytes and those
 //! of every file it names (includes, meshes, textures; found as quoted strings naming
-//! existing files, output images excepted), and the effective camera, film, filter, sampler
+//! existing files, output images excepted), and the effective camera, film, filter,
+//! reconstruction, sampler
 //! and integrator settings after the command-line overrides. Thread count, outputs and
 //! progress display do not change the image and are not part of it.
 //!
@@ -52,7 +55,7 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser};
-use mcrender_core::film::{Film, PixelStats, SplatSum};
+use mcrender_core::film::{Film, FilteredSums, PixelStats, SplatSum, FILTERED_SUMS_LEN};
 use mcrender_core::scene::SceneDescription;
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
@@ -69,6 +72,10 @@ const READS: [u32; 2] = [3, 4];
 const STATE_PREFIX: &str = "integrator.";
 /// Bytes per pixel in the film section: 7 f64 + 1 u64 + 3 i128.
 const FILM_BYTES_PER_PIXEL: usize = 8 * 8 + 3 * 16;
+/// Name of the section of a film of filter splatting's sums.
+const FILTERED_SECTION: &str = "film.filtered";
+/// Bytes per pixel in that section.
+const FILTERED_BYTES_PER_PIXEL: usize = 16 * FILTERED_SUMS_LEN;
 
 /// The checkpoint flags of `mcrender render`.
 #[derive(Args, Debug, Default, Clone)]
@@ -278,8 +285,8 @@ pub fn fingerprint(scene: Option<&Path>, desc: &SceneDescription, outputs: &[&Pa
         }
     }
     put(format!(
-        "{:?}\n{:?}\n{:?}\n{:?}\n{:?}",
-        desc.camera, desc.film, desc.filter, desc.sampler, desc.integrator
+        "{:?}\n{:?}\n{:?}\n{:?}\n{:?}\n{:?}",
+        desc.camera, desc.film, desc.filter, desc.reconstruction, desc.sampler, desc.integrator
     )
     .as_bytes());
     Ok(hex(&h.finalize()))
@@ -339,6 +346,9 @@ pub fn write(
     let what = || format!("cannot write checkpoint \"{}\"", path.display());
     let n = film.pixels().len();
     let mut sections = vec![json!({"name": "film", "bytes": n * FILM_BYTES_PER_PIXEL})];
+    if film.filtered_sums().is_some() {
+        sections.push(json!({"name": FILTERED_SECTION, "bytes": n * FILTERED_BYTES_PER_PIXEL}));
+    }
     sections.extend(state.map(|s| json!({"name": format!("{STATE_PREFIX}{}", s.name), "bytes": s.bytes.len()})));
     let header = json!({
         "format": "mcrender checkpoint",
@@ -393,6 +403,11 @@ pub fn write(
         }
         for s in film.splat_sums() {
             for x in s.to_fixed() {
+                out.write_all(&x.to_le_bytes())?;
+            }
+        }
+        for f in film.filtered_sums().unwrap_or_default() {
+            for x in f.to_fixed() {
                 out.write_all(&x.to_le_bytes())?;
             }
         }
@@ -492,6 +507,7 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         .ok_or("header \"sections\" is not a list")?;
     let mut at = header_end;
     let mut film = None;
+    let mut filtered = None;
     let mut integrator_state = None;
     for s in sections {
         let name = s
@@ -511,6 +527,7 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         at = end;
         match name {
             "film" => film = Some(read_film(data, width, height, samples_done)?),
+            FILTERED_SECTION => filtered = Some(read_filtered(data)?),
             state if version >= 2 && state.starts_with(STATE_PREFIX) => {
                 if integrator_state.is_some() {
                     return Err("two integrator sections".into());
@@ -526,11 +543,13 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
     if at != body.len() {
         return Err("bytes after the last section".into());
     }
-    if version == 3
-        && film
-            .as_ref()
-            .is_some_and(|f| f.splat_sums().iter().any(|s| !s.is_zero()))
-    {
+    let mut film = film.ok_or("no film section")?;
+    if let Some(f) = filtered {
+        film = film
+            .with_filtered_sums(f)
+            .ok_or("filtered sums section of the wrong size")?;
+    }
+    if version == 3 && film.splat_sums().iter().any(|s| !s.is_zero()) {
         return Err(
             "format version 3 with splats, which that version added to one pixel; this mcrender spreads them with the pixel filter (render again)"
                 .into(),
@@ -542,7 +561,7 @@ fn parse(bytes: &[u8]) -> Result<Checkpoint, String> {
         args,
         output,
         samples_per_pixel,
-        film: film.ok_or("no film section")?,
+        film,
         integrator_state,
     })
 }
@@ -574,6 +593,21 @@ fn read_film(data: &[u8], width: u32, height: u32, spp: u64) -> Result<Film, Str
         .map(|p| SplatSum::from_fixed([fixed(3 * p), fixed(3 * p + 1), fixed(3 * p + 2)]))
         .collect();
     Film::from_parts(width, height, pixels, splats, spp).ok_or_else(|| "film of the wrong size".into())
+}
+
+/// The filter-splatting sums of a `film.filtered` section.
+fn read_filtered(data: &[u8]) -> Result<Vec<FilteredSums>, String> {
+    if !data.len().is_multiple_of(FILTERED_BYTES_PER_PIXEL) {
+        return Err("filtered sums section of the wrong size".into());
+    }
+    Ok(data
+        .chunks_exact(FILTERED_BYTES_PER_PIXEL)
+        .map(|p| {
+            FilteredSums::from_fixed(std::array::from_fn(|k| {
+                i128::from_le_bytes(p[16 * k..16 * k + 16].try_into().expect("16 bytes"))
+            }))
+        })
+        .collect())
 }
 
 /// Refuse a checkpoint made for another scene, other settings or another binary.
@@ -647,6 +681,44 @@ mod tests {
         let mut flipped = bytes.clone();
         flipped[bytes.len() / 2] ^= 1;
         assert!(parse(&flipped).unwrap_err().contains("checksum"));
+    }
+
+    #[test]
+    fn a_film_of_filter_splatting_round_trips_with_its_sums() {
+        let mut f = Film::for_filter_splatting(3, 2);
+        let tent = mcrender_core::film::Filter::new(&mcrender_core::scene::FilterDesc::Triangle {
+            radius: mcrender_core::math::Vec2::splat(1.0),
+        });
+        let sample = |x: f32, y: f32, v: f32| mcrender_core::film::Splat {
+            p_film: mcrender_core::math::Vec2::new(x, y),
+            l: Rgb::new(v, 2.0 * v, 0.5),
+        };
+        let whole = mcrender_core::film::Footprint {
+            x0: 0,
+            x1: 3,
+            y0: 0,
+            y1: 2,
+        };
+        for s in 0..3 {
+            let v = 0.1 + s as f32;
+            assert_eq!(
+                f.add_filtered(&[sample(0.3, 0.6, v), sample(1.7, 1.2, 3.0 * v)], &tent, whole),
+                0
+            );
+            f.add_samples_per_pixel(1);
+        }
+        assert!(f.filtered_sums().unwrap().iter().any(|s| !s.is_zero()));
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.ckpt");
+        write(&path, "ab12", &invocation(), 4, &f, None).unwrap();
+        let ck = read(&path).unwrap();
+        assert_eq!(ck.film, f);
+        assert_eq!(ck.film.variance_image(), f.variance_image());
+        // The section is known by its name; a damaged size is refused.
+        let bytes = std::fs::read(&path).unwrap();
+        let text = String::from_utf8_lossy(&bytes);
+        assert!(text.contains("\"film.filtered\""));
+        assert!(read_filtered(&[0u8; 17]).is_err());
     }
 
     #[test]

@@ -8,7 +8,7 @@ use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use mcrender_core::scene::{GeometryDesc, SceneDescription};
+use mcrender_core::scene::{GeometryDesc, Reconstruction, SceneDescription};
 use mcrender_formats::limits::{format_bytes, mesh_bytes};
 use mcrender_formats::{io_error_text, quoted};
 
@@ -26,6 +26,19 @@ pub const MAX_DEPTH: u32 = 100_000;
 /// variance images written out (12 + 12), rounded up for the encoders' buffers. Measured
 /// with 24-byte splat sums: about 125 bytes a pixel (issue 10).
 pub const FILM_BYTES_PER_PIXEL: u64 = 184;
+/// What filter splatting adds per pixel: its filtered sums (11 i128, 176 bytes), the wave's
+/// camera samples, listed per tile and then gathered (2 x 20 bytes), and the wave's group
+/// sums (4 i128, 64 bytes).
+pub const FILTERED_BYTES_PER_PIXEL: u64 = 280;
+
+/// Bytes a film pixel of `desc` costs while rendering and writing.
+#[must_use]
+pub fn film_bytes_per_pixel(desc: &SceneDescription) -> u64 {
+    match desc.reconstruction {
+        Reconstruction::FilterSampling => FILM_BYTES_PER_PIXEL,
+        Reconstruction::FilterSplatting => FILM_BYTES_PER_PIXEL + FILTERED_BYTES_PER_PIXEL,
+    }
+}
 /// Share of physical memory a render may use by default.
 pub const DEFAULT_MEMORY_FRACTION: f64 = 0.75;
 
@@ -209,7 +222,7 @@ pub fn render_memory(desc: &SceneDescription, loaded_bytes: u64) -> u64 {
     let world = geometry(&mut desc.shapes.iter().map(|s| &s.geometry));
     let objects = geometry(&mut desc.objects.iter().flat_map(|o| o.shapes.iter().map(|s| &s.geometry)));
     pixels
-        .saturating_mul(FILM_BYTES_PER_PIXEL)
+        .saturating_mul(film_bytes_per_pixel(desc))
         .saturating_add(loaded_bytes)
         .saturating_add(world)
         .saturating_add(objects)
@@ -223,10 +236,11 @@ pub fn check_memory(desc: &SceneDescription, loaded_bytes: u64, limit: u64) -> R
     let need = render_memory(desc, loaded_bytes);
     if need > limit {
         let (w, h) = (desc.film.width, desc.film.height);
+        let per_pixel = film_bytes_per_pixel(desc);
         bail!(
-            "the render needs about {} ({w}x{h} film at {FILM_BYTES_PER_PIXEL} bytes a pixel, images and meshes {}), over the memory limit of {} (--max-memory; default {:.0}% of physical memory)",
+            "the render needs about {} ({w}x{h} film at {per_pixel} bytes a pixel, images and meshes {}), over the memory limit of {} (--max-memory; default {:.0}% of physical memory)",
             format_bytes(need),
-            format_bytes(need.saturating_sub(u64::from(w) * u64::from(h) * FILM_BYTES_PER_PIXEL)),
+            format_bytes(need.saturating_sub(u64::from(w) * u64::from(h) * per_pixel)),
             format_bytes(limit),
             DEFAULT_MEMORY_FRACTION * 100.0
         );

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::scene::{DirectStrategy, IntegratorKind, RussianRoulette, SamplerKind, SceneDescription};
+use mcrender_core::scene::{
+    DirectStrategy, IntegratorKind, Reconstruction, RussianRoulette, SamplerKind, SceneDescription,
+};
 use mcrender_core::scene::{MAX_PIXELS, MAX_RESOLUTION};
 use mcrender_formats::limits::LoadLimits;
 use mcrender_formats::pbrt::{load_str, LoadedScene};
@@ -53,6 +55,16 @@ pub enum SamplerChoice {
     Sobol,
 }
 
+/// How camera samples become pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ReconstructionChoice {
+    /// pbrt-v4's filter importance sampling: each sample counts for its own pixel.
+    Sample,
+    /// Mitsuba 3's splatting: each sample counts for every pixel the filter covers (less
+    /// noise per sample with wide filters; path, direct, BDPT and light tracing only).
+    Splat,
+}
+
 /// The scene and what to override in it.
 #[derive(Args, Debug, Default, Clone)]
 pub struct SceneArgs {
@@ -97,6 +109,10 @@ pub struct SceneArgs {
     /// Lecture's Russian roulette: probability of stopping when played (default 0.5).
     #[arg(long)]
     pub rr_prob: Option<f32>,
+    /// Pixel reconstruction: filter sampling (pbrt's way, the default for pbrt scenes) or
+    /// splatting (Mitsuba's, its scenes' default with filters other than the box).
+    #[arg(long, value_enum)]
+    pub reconstruction: Option<ReconstructionChoice>,
     /// Memory the render may use (film, images, meshes, BVH), e.g. 8G or 50%; default 75%
     /// of physical memory. A scene that needs more is refused before anything is allocated.
     #[arg(long, value_parser = crate::preflight::parse_bytes)]
@@ -208,6 +224,16 @@ impl SceneArgs {
                 IntegratorChoice::Sppm => IntegratorKind::Sppm,
                 IntegratorChoice::Mlt => IntegratorKind::Mlt,
             };
+        }
+        match self.reconstruction {
+            Some(ReconstructionChoice::Sample) => desc.reconstruction = Reconstruction::FilterSampling,
+            Some(ReconstructionChoice::Splat) => desc.reconstruction = Reconstruction::FilterSplatting,
+            // Integrators with their own driver fill the film themselves: a Mitsuba scene's
+            // splatting gives way to them unless asked for (then the scene is refused).
+            None if matches!(desc.integrator.kind, IntegratorKind::Sppm | IntegratorKind::Mlt) => {
+                desc.reconstruction = Reconstruction::FilterSampling;
+            }
+            None => {}
         }
         if let Some(d) = self.direct {
             desc.integrator.direct = d;

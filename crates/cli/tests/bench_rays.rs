@@ -120,15 +120,11 @@ fn hits_agree_with_brute_force() {
         "the test rays should hit and miss: {hit_count}"
     );
 
-    // The wide tree in each instruction set (the portable kernels forced), and the binary one.
-    let mut configs = vec![
-        vec!["--accel", "wide"],
-        vec!["--accel", "wide", "--isa", "portable"],
-        vec!["--accel", "binary"],
-    ];
+    // The tree in each instruction set (the best, and the portable kernels forced).
+    let mut configs = vec![vec![], vec!["--isa", "portable"]];
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
-        configs.push(vec!["--accel", "wide", "--isa", "avx2"]);
+        configs.push(vec!["--isa", "avx2"]);
     } else {
         eprintln!("NOT TESTED: --isa avx2 (this CPU has no AVX2 and FMA)");
     }

@@ -22,6 +22,7 @@ fn scene(geometry: GeometryDesc) -> Scene {
         filter: FilterDesc::Box {
             radius: Vec2::splat(0.5),
         },
+        reconstruction: Reconstruction::default(),
         sampler: SamplerDesc::default(),
         integrator: IntegratorDesc::default(),
         materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {

@@ -5,7 +5,8 @@
 use mcrender_core::color::Rgb;
 use mcrender_core::math::{Transform, Vec3};
 use mcrender_core::scene::{
-    CameraDesc, FilmDesc, FilterDesc, GeometryDesc, IntegratorDesc, LightDesc, SamplerDesc, SceneDescription,
+    CameraDesc, FilmDesc, FilterDesc, GeometryDesc, IntegratorDesc, LightDesc, Reconstruction, SamplerDesc,
+    SceneDescription,
 };
 
 /// Field of view of the default camera (degrees, along the shorter image axis).
@@ -25,6 +26,7 @@ pub fn model_scene() -> SceneDescription {
             height: 480,
         },
         filter: FilterDesc::default(),
+        reconstruction: Reconstruction::default(),
         sampler: SamplerDesc {
             samples_per_pixel: 64,
             ..SamplerDesc::default()

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Vec3;
-use mcrender_core::scene::{GeometryDesc, IntegratorKind, LightDesc, MaterialDesc};
+use mcrender_core::scene::{GeometryDesc, IntegratorKind, LightDesc, MaterialDesc, Reconstruction};
 use mcrender_formats::{load, load_with, LoadOptions, LoadedScene, SceneError, SceneErrorKind};
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
@@ -544,4 +544,20 @@ fn null_bsdf_is_an_interface() {
     let m = materials(&[r#"<bsdf type="null"/>"#, r#"<bsdf type="diffuse"/>"#]);
     assert_eq!(m[0], MaterialDesc::Interface);
     assert_ne!(m[1], MaterialDesc::Interface);
+}
+
+#[test]
+fn films_splat_through_filters_wider_than_the_pixel_box() {
+    let with = |filter: &str| {
+        let camera = CAMERA.replace("<rfilter type=\"box\"/>", filter);
+        load_text(&format!("<default name=\"spp\" value=\"1\"/>{camera}"))
+            .unwrap()
+            .description
+            .reconstruction
+    };
+    // The box of radius one half: the same samples as filter sampling, kept.
+    assert_eq!(with("<rfilter type=\"box\"/>"), Reconstruction::FilterSampling);
+    assert_eq!(with("<rfilter type=\"tent\"/>"), Reconstruction::FilterSplatting);
+    // hdrfilm's default filter is the Gaussian.
+    assert_eq!(with(""), Reconstruction::FilterSplatting);
 }

@@ -58,6 +58,7 @@ pub fn render_error(e: &RenderError) -> PyErr {
         RenderError::Integrator(_)
         | RenderError::SampleRange { .. }
         | RenderError::FilmSize { .. }
+        | RenderError::FilmReconstruction { .. }
         | RenderError::Window { .. } => PyValueError::new_err(e.to_string()),
         RenderError::ThreadPool { .. } | RenderError::Cancelled { .. } => PyRuntimeError::new_err(e.to_string()),
     }

@@ -4,10 +4,11 @@
 //! exactly (`combined`) into the film of the whole image, bit for bit: this is how
 //! `mcrender.distributed` assembles the bands rendered on Ray workers. Films of consecutive
 //! sample ranges merge (`merged`) into the film of their union up to the rounding of the f64
-//! additions' grouping. Films pickle to a compact byte string.
+//! additions' grouping. Films pickle to a compact byte string. A film of filter splatting
+//! also holds each pixel's filtered sums (fixed point), which combine and merge exactly.
 
 use mcrender_core::color::Rgb;
-use mcrender_core::film::{Film, PixelStats, SplatSum};
+use mcrender_core::film::{Film, FilteredSums, PixelStats, SplatSum, FILTERED_SUMS_LEN};
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -15,9 +16,11 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 
 /// Bytes of the header (width, height as little-endian u32, samples per pixel as u64) and
-/// of one pixel (seven f64 sums, a u64 count, three i128 fixed-point splat sums).
+/// of one pixel (seven f64 sums, a u64 count, three i128 fixed-point splat sums); a film of
+/// filter splatting then has, per pixel, its filtered sums (i128 each).
 const HEADER: usize = 16;
 const PIXEL: usize = 64 + 48;
+const FILTERED: usize = 16 * FILTERED_SUMS_LEN;
 
 /// The accumulated samples of a render: `image()` is the estimate, `variance()` the
 /// estimated variance of each pixel's estimate.
@@ -54,6 +57,11 @@ impl PyFilm {
                 out.extend_from_slice(&v.to_le_bytes());
             }
         }
+        for f in self.film.filtered_sums().unwrap_or_default() {
+            for v in f.to_fixed() {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+        }
         out
     }
 
@@ -67,9 +75,11 @@ impl PyFilm {
         let height = u32::from_le_bytes(bytes[4..8].try_into().map_err(|_| bad())?);
         let spp = u64::from_le_bytes(word(8));
         let n = width as usize * height as usize;
-        if bytes.len() != HEADER + PIXEL * n {
+        let with_filtered = bytes.len() == HEADER + (PIXEL + FILTERED) * n && n > 0;
+        if bytes.len() != HEADER + PIXEL * n && !with_filtered {
             return Err(bad());
         }
+        let int = |b: usize| i128::from_le_bytes(bytes[b..b + 16].try_into().unwrap_or_default());
         let (mut pixels, mut splats) = (Vec::with_capacity(n), Vec::with_capacity(n));
         for i in 0..n {
             let at = HEADER + PIXEL * i;
@@ -80,14 +90,20 @@ impl PyFilm {
                 sum_wl2: [f(4), f(5), f(6)],
                 count: u64::from_le_bytes(word(at + 56)),
             });
-            let fixed = |k: usize| {
-                let b = at + 64 + 16 * k;
-                i128::from_le_bytes(bytes[b..b + 16].try_into().unwrap_or_default())
-            };
+            let fixed = |k: usize| int(at + 64 + 16 * k);
             splats.push(SplatSum::from_fixed([fixed(0), fixed(1), fixed(2)]));
         }
         let film = Film::from_parts(width, height, pixels, splats, spp).ok_or_else(bad)?;
-        Ok(film)
+        if !with_filtered {
+            return Ok(film);
+        }
+        let filtered = (0..n)
+            .map(|i| {
+                let at = HEADER + PIXEL * n + FILTERED * i;
+                FilteredSums::from_fixed(std::array::from_fn(|k| int(at + 16 * k)))
+            })
+            .collect();
+        film.with_filtered_sums(filtered).ok_or_else(bad)
     }
 }
 
@@ -122,6 +138,11 @@ impl PyFilm {
                 other.film.width(),
                 other.film.height()
             )));
+        }
+        if self.film.filtered_sums().is_some() != other.film.filtered_sums().is_some() {
+            return Err(PyValueError::new_err(
+                "Film.merged: films of different reconstructions (filter sampling and splatting)",
+            ));
         }
         let mut film = self.film.clone();
         film.merge(&other.film);

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use mcrender_core::render::{RenderOptions, RenderOutput, Tile};
-use mcrender_core::scene::{DirectStrategy, IntegratorKind, Scene, SceneDescription};
+use mcrender_core::scene::{DirectStrategy, IntegratorKind, Reconstruction, Scene, SceneDescription};
 use numpy::PyArray3;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -293,6 +293,31 @@ impl PyScene {
             _ => {
                 return Err(PyValueError::new_err(format!(
                     "integrator: expected \"path\", \"direct\", \"bdpt\", \"lightpath\", \"sppm\" or \"mlt\", found \"{value}\""
+                )))
+            }
+        };
+        Ok(())
+    }
+
+    /// How camera samples become pixels: "sample" (filter importance sampling, pbrt's) or
+    /// "splat" (every sample counts for each pixel its filter covers, Mitsuba's; less noise
+    /// per sample with wide filters; not with sppm or mlt).
+    #[getter]
+    fn get_reconstruction(&self) -> &'static str {
+        match self.desc.reconstruction {
+            Reconstruction::FilterSampling => "sample",
+            Reconstruction::FilterSplatting => "splat",
+        }
+    }
+
+    #[setter]
+    fn set_reconstruction(&mut self, value: &str) -> PyResult<()> {
+        self.desc.reconstruction = match value {
+            "sample" => Reconstruction::FilterSampling,
+            "splat" => Reconstruction::FilterSplatting,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "reconstruction: expected \"sample\" or \"splat\", found \"{value}\""
                 )))
             }
         };

@@ -333,12 +333,17 @@ def test_mlt_equals_the_cli(cli, scene_path, tmp_path):
     scene.integrator = "mlt"
 
 
-@pytest.mark.parametrize("integrator", ["path", "bdpt", "lightpath"])
-def test_windows_combine_into_the_whole_render_bit_for_bit(scene_path, integrator):
+@pytest.mark.parametrize("integrator,reconstruction",
+                         [("path", "sample"), ("bdpt", "sample"), ("lightpath", "sample"),
+                          ("path", "splat"), ("bdpt", "splat")])
+def test_windows_combine_into_the_whole_render_bit_for_bit(scene_path, integrator, reconstruction):
     """Disjoint windows (any shapes, combined in any order) give the whole image's bits,
-    also for the integrators whose splats land outside the window that made them."""
+    also for the integrators whose splats land outside the window that made them, and
+    under filter splatting, whose samples reach the pixels around their own."""
     scene = mcrender.load(scene_path)
     scene.integrator = integrator
+    scene.reconstruction = reconstruction
+    assert scene.reconstruction == reconstruction
     scene.resolution = (40, 30)
     scene.seed = 3
     whole = scene.render_film(0, 4)
@@ -359,6 +364,9 @@ def test_windows_combine_into_the_whole_render_bit_for_bit(scene_path, integrato
         films[0].combined(films[0])
     with pytest.raises(ValueError, match="window"):
         scene.render_film(0, 4, window=(0, 0, 41, 5))
+    assert (whole.to_bytes() == mcrender.Film.from_bytes(whole.to_bytes()).to_bytes())
+    with pytest.raises(ValueError, match="reconstruction"):
+        scene.reconstruction = "blur"
 
 
 def test_compare_integrators_has_the_figures_of_the_cli_json(cli, repo, tmp_path):

@@ -105,9 +105,9 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
         let n = f64::from(w * h);
         let se = (prog
             .film
-            .pixels()
+            .variance_image()
             .iter()
-            .map(|p| f64::from(p.variance_of_mean().luminance()))
+            .map(|v| f64::from(v.luminance()))
             .sum::<f64>()
             / (n * n))
             .sqrt();

@@ -3,26 +3,26 @@
 //! instructions per axis, which the compiler turns into 4-lane SIMD (SSE on any x86-64, NEON
 //! on aarch64) without `unsafe` or target-specific code: the lane loops below are plain
 //! fixed-size array arithmetic, written so each step maps onto one vector instruction
-//! (`a > b ? a : b` is `maxps`). Nodes are collapsed from the binned-SAH binary tree of
-//! [`super::wide_build`] by repeatedly opening the child of largest surface area (as in
-//! Wald et al. 2008, "Getting rid of packets", and Embree's BVH4 builder).
+//! (`a > b ? a : b` is `maxps`). Nodes are built by [`super::wide_build`] from binned-SAH
+//! binary splits, repeatedly opening the child of largest surface area (as in Wald et al.
+//! 2008, "Getting rid of packets", and Embree's BVH4 builder).
 //!
 //! Closest-hit traversal is ordered: the children a ray enters are pushed far to near with
 //! their entry distance, and a popped entry farther than the closest hit so far is skipped.
-//! Any-hit traversal stops at the first blocker. As [`super::Bvh`], the tree knows
-//! primitives by index and bounds only; queries take a closure testing one primitive.
+//! Any-hit traversal stops at the first blocker. The tree knows primitives by index and
+//! bounds only; queries take a closure testing one primitive.
 
 use rayon::prelude::*;
 
 use super::simd::{self, Isa};
 use super::tri_block::{self, RayTriangles, TriBlock, TriangleHit};
-use super::wide_build::{self, BuildNode, MAX_DEPTH};
+use super::wide_build::{self, MAX_DEPTH};
 use crate::math::{gamma, Bounds3, Ray, Vec3};
 
 /// Children per node.
 pub const WIDTH: usize = 4;
 /// `count` of an inner child.
-const INNER: u32 = u32::MAX;
+pub(super) const INNER: u32 = u32::MAX;
 /// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
 const BLOCK: u32 = 1 << 30;
 /// Traversal stack entries held on the call stack; a tree that may need more (deeper than
@@ -51,7 +51,7 @@ pub struct WideNode {
 }
 
 impl WideNode {
-    const EMPTY: Self = Self {
+    pub(super) const EMPTY: Self = Self {
         lo: [[f32::INFINITY; WIDTH]; 3],
         hi: [[f32::NEG_INFINITY; WIDTH]; 3],
         child: [0; WIDTH],
@@ -153,81 +153,27 @@ impl WideBvh {
     /// parallel on the current rayon pool.
     #[must_use]
     pub fn build(bounds: &[Bounds3]) -> Self {
-        if bounds.is_empty() {
-            return Self::default();
-        }
-        let mut prims = wide_build::build_prims(bounds);
-        let costs = wide_build::Costs::for_count(bounds.len());
-        let all = wide_build::bounds_of(&prims);
-        let tree = wide_build::build(&mut prims, 0, 0, costs, all);
-        let mut bvh = Self {
-            nodes: Vec::with_capacity(bounds.len() / 2 + 1),
-            prim_indices: prims.iter().map(|p| p.index).collect(),
-            root: None,
-            bounds: tree.bounds(),
-            stack_size: 1,
-            blocks: Vec::new(),
-            isa: Isa::best(),
-        };
-        bvh.root = Some(bvh.collapse(&tree, 1));
-        bvh
+        Self::build_with(bounds.len(), |i| bounds[i])
     }
 
-    /// Append the wide nodes of `node`'s subtree, whose root is an inner node at `level`
-    /// (1 for the tree's root) if it is one; returns its `(child, count)` entry.
-    fn collapse(&mut self, node: &BuildNode, level: usize) -> (u32, u32) {
-        let children = match node {
-            BuildNode::Leaf { start, count, .. } => return (*start, *count),
-            BuildNode::Inner { children, .. } => children,
-        };
-        self.stack_size = self.stack_size.max(1 + (WIDTH - 1) * level).min(MAX_STACK);
-        // Open the inner child of largest surface area until there are four (kept in a
-        // fixed array with their areas: this runs once per node).
-        let area = |n: &BuildNode| match n {
-            BuildNode::Inner { bounds, .. } => bounds.surface_area(),
-            BuildNode::Leaf { .. } => f32::NEG_INFINITY,
-        };
-        let mut lanes: [(&BuildNode, f32); WIDTH] = [(&children[0], 0.0); WIDTH];
-        lanes[0] = (&children[0], area(&children[0]));
-        lanes[1] = (&children[1], area(&children[1]));
-        let mut len = 2;
-        while len < WIDTH {
-            // The first of the largest, as `Iterator::max_by` picks the last: scan backwards.
-            let mut widest = None;
-            for i in (0..len).rev() {
-                if matches!(lanes[i].0, BuildNode::Inner { .. })
-                    && widest.is_none_or(|w: usize| lanes[i].1.total_cmp(&lanes[w].1).is_gt())
-                {
-                    widest = Some(i);
-                }
-            }
-            let Some(i) = widest else { break };
-            let BuildNode::Inner { children, .. } = lanes[i].0 else {
-                unreachable!("chosen among inner nodes")
-            };
-            // As `Vec::swap_remove` then two pushes.
-            lanes[i] = lanes[len - 1];
-            lanes[len - 1] = (&children[0], area(&children[0]));
-            lanes[len] = (&children[1], area(&children[1]));
-            len += 1;
+    /// [`Self::build`] over `count` primitives whose bounds `bounds_of(i)` gives, asked once
+    /// each (in parallel), so no array of bounds need be made first.
+    #[must_use]
+    pub fn build_with(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Self {
+        if count == 0 {
+            return Self::default();
         }
-        let index = self.nodes.len();
-        self.nodes.push(WideNode::EMPTY);
-        for (i, &(lane, _)) in lanes[..len].iter().enumerate() {
-            let b = lane.bounds();
-            let (child, count) = match lane {
-                BuildNode::Leaf { start, count, .. } => (*start, *count),
-                BuildNode::Inner { .. } => (self.collapse(lane, level + 1).0, INNER),
-            };
-            let n = &mut self.nodes[index];
-            for a in 0..3 {
-                n.lo[a][i] = b.min[a];
-                n.hi[a][i] = b.max[a];
-            }
-            n.child[i] = child;
-            n.count[i] = count;
+        let mut prims = wide_build::build_prims(count, bounds_of);
+        let (nodes, root, bounds, levels) = wide_build::build_wide(&mut prims, wide_build::Costs::for_count(count));
+        Self {
+            nodes,
+            prim_indices: prims.par_iter().map(wide_build::BuildPrim::index).collect(),
+            root: Some(root),
+            bounds,
+            stack_size: (1 + (WIDTH - 1) * levels).min(MAX_STACK),
+            blocks: Vec::new(),
+            isa: Isa::best(),
         }
-        (index as u32, INNER)
     }
 
     /// Put `items`, the primitives `0..items.len()` the tree was built over, in the order its

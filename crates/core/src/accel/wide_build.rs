@@ -1,16 +1,19 @@
-//! The build of [`super::WideBvh`]: a binary tree by binned SAH (12 buckets on each of the
-//! three centroid axes, the cheapest split wins; costs in [`Costs`]), built in
-//! parallel with `rayon::join` on large subtrees and partitioning the primitive array in
-//! place, so a leaf is a range of the final primitive order. The binary tree is then
-//! collapsed into 4-wide nodes by [`super::wide`]. The cost model depends on the tree's size
-//! ([`Costs`]).
+//! The build of [`super::WideBvh`]: binned SAH (12 buckets on each of the three centroid
+//! axes, the cheapest split wins; costs in [`Costs`]) over 32-byte build primitives,
+//! partitioning the primitive array in place, so a leaf is a range of the final primitive
+//! order. The 4-wide nodes are made directly as the binary splits are decided
+//! ([`build_wide`]): the binary tree is never stored, nothing is allocated per node, and
+//! large subtrees are built in parallel with rayon. The cost model depends on the tree's
+//! size ([`Costs`]).
 //!
 //! Depth is bounded: below [`MEDIAN_DEPTH`] levels the builder stops looking at costs and
 //! splits at the centroid median, so the traversal stack has a fixed size.
 
 use rayon::prelude::*;
 
-use glam::Vec3A;
+use glam::{Vec3A, Vec4};
+
+use super::wide::{WideNode, INNER, WIDTH};
 
 use crate::math::Bounds3;
 
@@ -26,19 +29,46 @@ const MEDIAN_DEPTH: u32 = 64;
 /// reach single primitives for up to 2^32 of them.
 pub(super) const MAX_DEPTH: usize = MEDIAN_DEPTH as usize + 33;
 
-/// A primitive during the build: its box in 4-lane vectors (for fast unions) and index.
+/// A primitive during the build, in 32 bytes: its box in two 4-lane vectors (for fast
+/// unions), whose fourth lanes hold the primitive's index, 16 bits in each as a small
+/// float (so the lane arithmetic of the build never meets a denormal or NaN there).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct BuildPrim {
-    pub lo: Vec3A,
-    pub hi: Vec3A,
-    pub index: u32,
+    lo: Vec4,
+    hi: Vec4,
 }
 
 impl BuildPrim {
+    /// The primitive `index` with box `b`.
+    fn new(b: &Bounds3, index: u32) -> Self {
+        Self {
+            lo: b.min.extend((index & 0xffff) as f32),
+            hi: b.max.extend((index >> 16) as f32),
+        }
+    }
+
+    /// The primitive's index.
+    #[inline]
+    pub fn index(&self) -> u32 {
+        self.lo.w as u32 | (self.hi.w as u32) << 16
+    }
+
+    /// Box minimum.
+    #[inline]
+    fn lo(&self) -> Vec3A {
+        Vec3A::from_vec4(self.lo)
+    }
+
+    /// Box maximum.
+    #[inline]
+    fn hi(&self) -> Vec3A {
+        Vec3A::from_vec4(self.hi)
+    }
+
     /// Twice the centroid (the halving does not change any comparison or bucket).
     #[inline]
     fn centroid2(&self) -> Vec3A {
-        self.lo + self.hi
+        self.lo() + self.hi()
     }
 }
 
@@ -83,42 +113,17 @@ impl Box3 {
     }
 }
 
-/// A node of the binary build tree.
-#[derive(Debug)]
-pub(super) enum BuildNode {
-    /// Primitives `start..start + count` of the final order.
-    Leaf { bounds: Bounds3, start: u32, count: u32 },
-    /// Two subtrees.
-    Inner {
-        bounds: Bounds3,
-        children: Box<[BuildNode; 2]>,
-    },
-}
-
-impl BuildNode {
-    pub fn bounds(&self) -> Bounds3 {
-        match self {
-            Self::Leaf { bounds, .. } | Self::Inner { bounds, .. } => *bounds,
-        }
-    }
-}
-
-/// The primitives of `bounds`, in parallel.
-pub(super) fn build_prims(bounds: &[Bounds3]) -> Vec<BuildPrim> {
-    bounds
-        .par_iter()
-        .enumerate()
-        .map(|(i, b)| BuildPrim {
-            lo: b.min.into(),
-            hi: b.max.into(),
-            index: i as u32,
-        })
+/// The primitives `0..count` with bounds `bounds_of(i)`, in parallel.
+pub(super) fn build_prims(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Vec<BuildPrim> {
+    (0..count)
+        .into_par_iter()
+        .map(|i| BuildPrim::new(&bounds_of(i), i as u32))
         .collect()
 }
 
 /// Bounds of the primitives and of their (doubled) centroids.
 pub(super) fn bounds_of(prims: &[BuildPrim]) -> (Box3, Box3) {
-    let fold = |(b, c): (Box3, Box3), p: &BuildPrim| (b.union(p.lo, p.hi), c.union(p.centroid2(), p.centroid2()));
+    let fold = |(b, c): (Box3, Box3), p: &BuildPrim| (b.union(p.lo(), p.hi()), c.union(p.centroid2(), p.centroid2()));
     let empty = (Box3::EMPTY, Box3::EMPTY);
     if prims.len() > PARALLEL_MIN * 4 {
         prims
@@ -130,58 +135,209 @@ pub(super) fn bounds_of(prims: &[BuildPrim]) -> (Box3, Box3) {
     }
 }
 
-/// Build the subtree over `prims`, which sit at `start..` in the final order; `bounds` are
-/// those of the primitives and of their doubled centroids ([`bounds_of`]), which the parent
-/// learnt while splitting, so no pass over the primitives is spent on them.
-pub(super) fn build(
-    prims: &mut [BuildPrim],
+/// A node of the binary tree whose split is decided (and its primitives partitioned):
+/// primitives `start..start + len` of the final order.
+#[derive(Clone, Copy)]
+struct Decided {
     start: usize,
+    len: usize,
+    /// Binary depth (0 for the root).
     depth: u32,
-    costs: Costs,
-    bounds: (Box3, Box3),
-) -> BuildNode {
+    /// Box of the primitives.
+    bounds: Box3,
+    /// `None` for a leaf; else the split position within the node and the bounds (boxes,
+    /// doubled centroids) of both sides.
+    split: Option<(usize, [(Box3, Box3); 2])>,
+}
+
+impl Decided {
+    /// What the collapse compares: the surface area of an inner node, `-inf` for a leaf.
+    fn collapse_area(&self) -> f32 {
+        if self.split.is_some() {
+            self.bounds.bounds().surface_area()
+        } else {
+            f32::NEG_INFINITY
+        }
+    }
+}
+
+/// Decide how the node over `prims`, which sit at `start..` in the final order, splits, and
+/// partition them accordingly; `bounds` are those of the primitives and of their doubled
+/// centroids ([`bounds_of`]), which the parent learnt while splitting, so no pass over the
+/// primitives is spent on them.
+fn decide(prims: &mut [BuildPrim], start: usize, depth: u32, costs: Costs, bounds: (Box3, Box3)) -> Decided {
     let (boxed, centroids) = bounds;
-    let leaf = |prims: &[BuildPrim]| BuildNode::Leaf {
-        bounds: boxed.bounds(),
-        start: start as u32,
-        count: prims.len() as u32,
+    let mut node = Decided {
+        start,
+        len: prims.len(),
+        depth,
+        bounds: boxed,
+        split: None,
     };
     if prims.len() == 1 {
-        return leaf(prims);
+        return node;
     }
     let axis = (centroids.hi - centroids.lo).max_position();
     let (mid, sides) = if centroids.hi[axis] == centroids.lo[axis] {
         // Coincident centroids cannot be separated by position.
         if prims.len() <= MAX_LEAF {
-            return leaf(prims);
+            return node;
         }
         (prims.len() / 2, None)
     } else if depth >= MEDIAN_DEPTH || prims.len() <= 2 {
         (median_split(prims, axis), None)
+    } else if costs == Costs::Blocks && prims.len() <= MAX_LEAF && (boxed.area() > 0.0 && boxed.area().is_finite()) {
+        // What `sah_split` would find without binning: a split costs at least the
+        // traversal, 1, a leaf of one block exactly 1, so the leaf wins (the area must be
+        // finite and positive for the cost to be a number at least 1).
+        return node;
     } else {
         match sah_split(prims, boxed, centroids, costs) {
-            Split::Leaf => return leaf(prims),
+            Split::Leaf => return node,
             Split::Median(mid) => (mid, None),
             Split::Sah(mid, sides) => (mid, Some(sides)),
         }
     };
-    let (left, right) = prims.split_at_mut(mid);
-    let [left_bounds, right_bounds] = sides.unwrap_or_else(|| [bounds_of(left), bounds_of(right)]);
-    let (a, b) = if left.len().min(right.len()) > PARALLEL_MIN {
-        rayon::join(
-            || build(left, start, depth + 1, costs, left_bounds),
-            || build(right, start + mid, depth + 1, costs, right_bounds),
-        )
+    let sides = sides.unwrap_or_else(|| {
+        let (left, right) = prims.split_at(mid);
+        [bounds_of(left), bounds_of(right)]
+    });
+    node.split = Some((mid, sides));
+    node
+}
+
+/// Decide the two children of `node`, an inner node within `prims`, whose first primitive
+/// sits at `base` in the final order.
+fn children(prims: &mut [BuildPrim], base: usize, node: &Decided, costs: Costs) -> [Decided; 2] {
+    let (mid, sides) = node.split.expect("an inner node");
+    let at = node.start - base;
+    let (left, right) = prims[at..at + node.len].split_at_mut(mid);
+    let mut left = || decide(left, node.start, node.depth + 1, costs, sides[0]);
+    let mut right = || decide(right, node.start + mid, node.depth + 1, costs, sides[1]);
+    if node.len > PARALLEL_WIDE {
+        // The splits above the parallel subtrees: both sides partitioned at once.
+        rayon::join(left, right).into()
     } else {
-        (
-            build(left, start, depth + 1, costs, left_bounds),
-            build(right, start + mid, depth + 1, costs, right_bounds),
-        )
-    };
-    BuildNode::Inner {
-        bounds: boxed.bounds(),
-        children: Box::new([a, b]),
+        [left(), right()]
     }
+}
+
+/// The 4-wide tree over `prims` (primitives `0..` of the final order, reordered in place):
+/// its nodes in depth-first order, the root's `(child, count)` entry (a leaf when there are
+/// at most [`MAX_LEAF`] primitives), the bounds of everything and the deepest inner level
+/// (1 for the root, 0 for a leaf root).
+///
+/// Each node is made as the binary tree is split: starting from the binary node's two
+/// children, the inner child of largest surface area is opened until there are four (as in
+/// Wald et al. 2008, "Getting rid of packets", and Embree's BVH4 builder). The binary tree
+/// is never stored: a child is decided (split and partitioned) when it becomes a lane, and
+/// an inner lane that stays closed starts its own wide node from that decision.
+pub(super) fn build_wide(prims: &mut [BuildPrim], costs: Costs) -> (Vec<WideNode>, (u32, u32), Bounds3, usize) {
+    let all = bounds_of(prims);
+    let root = decide(prims, 0, 0, costs, all);
+    let bounds = root.bounds.bounds();
+    if root.split.is_none() {
+        return (Vec::new(), (0, root.len as u32), bounds, 0);
+    }
+    let mut nodes = Vec::with_capacity(prims.len() / 4 + 1);
+    let levels = wide_subtree(prims, root, 1, costs, &mut nodes);
+    (nodes, (0, INNER), bounds, levels)
+}
+
+/// Subtrees of more primitives than this build their inner lanes in parallel.
+const PARALLEL_WIDE: usize = 4 * PARALLEL_MIN;
+
+/// Append the nodes of the subtree of `node`, an inner node over exactly `prims` at wide
+/// `level`, to `out`, its root first; returns the deepest inner level below.
+fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Costs, out: &mut Vec<WideNode>) -> usize {
+    let base = node.start;
+    // Open the inner lane of largest surface area until there are four (kept in a fixed
+    // array with their areas).
+    let [a, b] = children(prims, base, &node, costs);
+    let mut lanes: [(Decided, f32); WIDTH] = [(a, 0.0); WIDTH];
+    lanes[0] = (a, a.collapse_area());
+    lanes[1] = (b, b.collapse_area());
+    let mut len = 2;
+    while len < WIDTH {
+        // The last of the largest (as `Iterator::max_by` picks): scan backwards.
+        let mut widest = None;
+        for i in (0..len).rev() {
+            if lanes[i].0.split.is_some() && widest.is_none_or(|w: usize| lanes[i].1.total_cmp(&lanes[w].1).is_gt()) {
+                widest = Some(i);
+            }
+        }
+        let Some(i) = widest else { break };
+        let [a, b] = children(prims, base, &lanes[i].0, costs);
+        // As `Vec::swap_remove` then two pushes.
+        lanes[i] = lanes[len - 1];
+        lanes[len - 1] = (a, a.collapse_area());
+        lanes[len] = (b, b.collapse_area());
+        len += 1;
+    }
+    let index = out.len();
+    let mut wide = WideNode::EMPTY;
+    for (i, (lane, _)) in lanes[..len].iter().enumerate() {
+        let b = lane.bounds.bounds();
+        for a in 0..3 {
+            wide.lo[a][i] = b.min[a];
+            wide.hi[a][i] = b.max[a];
+        }
+        wide.child[i] = lane.start as u32;
+        wide.count[i] = if lane.split.is_some() { INNER } else { lane.len as u32 };
+    }
+    out.push(wide);
+    // The inner lanes' primitives, each a disjoint part of `prims`.
+    let mut by_start: [usize; WIDTH] = std::array::from_fn(|i| i);
+    by_start[..len].sort_unstable_by_key(|&i| lanes[i].0.start);
+    let mut parts: [Option<&mut [BuildPrim]>; WIDTH] = Default::default();
+    let mut rest = prims;
+    for &i in &by_start[..len] {
+        let (part, tail) = rest.split_at_mut(lanes[i].0.len);
+        parts[i] = Some(part);
+        rest = tail;
+    }
+    let inner = |i: usize| lanes[i].0.split.is_some();
+    let mut deepest = level;
+    if node.len > PARALLEL_WIDE {
+        // Each inner lane's subtree into its own list, in parallel, then appended in lane
+        // order with its node indices moved by where it lands.
+        let jobs: Vec<(usize, &mut [BuildPrim])> = parts
+            .into_iter()
+            .enumerate()
+            .filter(|&(i, _)| i < len && inner(i))
+            .map(|(i, p)| (i, p.expect("a part per lane")))
+            .collect();
+        let built: Vec<(usize, Vec<WideNode>, usize)> = jobs
+            .into_par_iter()
+            .map(|(i, part)| {
+                let mut sub = Vec::with_capacity(part.len() / 4 + 1);
+                let deepest = wide_subtree(part, lanes[i].0, level + 1, costs, &mut sub);
+                (i, sub, deepest)
+            })
+            .collect();
+        for (i, sub, d) in built {
+            let offset = out.len() as u32;
+            out[index].child[i] = offset;
+            out.extend(sub.into_iter().map(|mut n| {
+                for k in 0..WIDTH {
+                    if n.count[k] == INNER {
+                        n.child[k] += offset;
+                    }
+                }
+                n
+            }));
+            deepest = deepest.max(d);
+        }
+    } else {
+        for (i, part) in parts.into_iter().enumerate().take(len) {
+            if inner(i) {
+                out[index].child[i] = out.len() as u32;
+                let d = wide_subtree(part.expect("a part per lane"), lanes[i].0, level + 1, costs, out);
+                deepest = deepest.max(d);
+            }
+        }
+    }
+    deepest
 }
 
 /// Split at the median centroid along `axis`.
@@ -244,7 +400,7 @@ impl Bins {
         for (axis, &k) in b.iter().enumerate() {
             let k = k as usize;
             self.counts[axis][k] += 1;
-            self.boxes[axis][k] = self.boxes[axis][k].union(p.lo, p.hi);
+            self.boxes[axis][k] = self.boxes[axis][k].union(p.lo(), p.hi());
         }
     }
 }
@@ -417,7 +573,8 @@ impl Costs {
 
 /// Reorder `prims` so those satisfying `pred` come first (those keep their order; the
 /// others are permuted as a swap-based partition leaves them); returns how many do and the
-/// bounds of both sides' doubled centroids.
+/// bounds of both sides' doubled centroids. (A branch-free version, writing both slots with
+/// lane selects, was slower in alternating runs.)
 fn partition(prims: &mut [BuildPrim], pred: impl Fn(&BuildPrim) -> bool) -> (usize, [Box3; 2]) {
     let mut sides = [Box3::EMPTY; 2];
     let mut i = 0;
@@ -461,17 +618,62 @@ mod tests {
         assert_eq!(floor_to_int(Vec3A::new(0.0, 11.0, 4_194_304.0)), [0, 11, 4_194_304]);
     }
 
-    /// The bounds a split hands down equal those computed from the primitives afresh, and the
-    /// tree is the same as one built computing them afresh.
-    #[test]
-    fn split_bounds_match_a_fresh_pass() {
-        let mut state = 12345u32;
-        let mut next = || {
+    /// Uniform floats in `[0, 1]` from a xorshift generator started at `seed`.
+    fn uniform(seed: u32) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
             state ^= state << 13;
             state ^= state >> 17;
             state ^= state << 5;
             state as f32 / u32::MAX as f32
+        }
+    }
+
+    /// The index survives the trip through the boxes' fourth lanes.
+    #[test]
+    fn build_prims_keep_their_index() {
+        let b = Bounds3 {
+            min: crate::math::Vec3::splat(-1.0),
+            max: crate::math::Vec3::splat(2.0),
         };
+        for i in [0, 1, 0xffff, 0x1_0000, 0x1234_5678, u32::MAX] {
+            let p = BuildPrim::new(&b, i);
+            assert_eq!(p.index(), i);
+            assert_eq!((p.lo(), p.hi()), (Vec3A::splat(-1.0), Vec3A::splat(2.0)));
+        }
+    }
+
+    /// With block costs, up to four primitives in a box of positive area always make a
+    /// leaf by the SAH, which `decide` then takes without binning.
+    #[test]
+    fn block_cost_small_nodes_are_leaves_by_the_sah() {
+        let mut next = uniform(987);
+        for trial in 0..2000 {
+            let n = 3 + trial % 2;
+            let bounds: Vec<Bounds3> = (0..n)
+                .map(|_| {
+                    let c = crate::math::Vec3::new(next(), next(), next()) * 10.0;
+                    let e = crate::math::Vec3::new(next(), next(), next()) * (0.01 + next());
+                    Bounds3 { min: c - e, max: c + e }
+                })
+                .collect();
+            let mut prims = build_prims(bounds.len(), |i| bounds[i]);
+            let (boxed, centroids) = bounds_of(&prims);
+            assert!(matches!(
+                sah_split(&mut prims, boxed, centroids, Costs::Blocks),
+                Split::Leaf
+            ));
+            assert!(decide(&mut prims, 0, 0, Costs::Blocks, (boxed, centroids))
+                .split
+                .is_none());
+        }
+    }
+
+    /// The bounds a split hands down equal those computed from the primitives afresh, and the
+    /// tree is the same as one built computing them afresh.
+    #[test]
+    fn split_bounds_match_a_fresh_pass() {
+        let mut next = uniform(12345);
         let bounds: Vec<Bounds3> = (0..5000)
             .map(|_| {
                 let c = crate::math::Vec3::new(next(), next(), next()) * 10.0;
@@ -479,7 +681,7 @@ mod tests {
                 Bounds3 { min: c - e, max: c + e }
             })
             .collect();
-        let mut prims = build_prims(&bounds);
+        let mut prims = build_prims(bounds.len(), |i| bounds[i]);
         let (boxed, centroids) = bounds_of(&prims);
         let Split::Sah(mid, sides) = sah_split(&mut prims, boxed, centroids, Costs::Primitives) else {
             panic!("5000 spread boxes must split by the SAH");

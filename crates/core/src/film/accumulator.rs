@@ -11,10 +11,14 @@
 //! exactly and in any order by [`SplatSum`]); the displayed value is
 //! `mean + splat_sum / spp` with `spp` the samples per pixel of the whole film. The
 //! variance covers the pixel's own samples only.
+//!
+//! Under filter splatting ([`super::Reconstruction::FilterSplatting`]) the film also holds
+//! each pixel's [`FilteredSums`], which then replace the accumulators as the pixel's mean
+//! and variance.
 
 use rayon::prelude::*;
 
-use super::{Filter, Footprint, Splat, SplatSum};
+use super::{Filter, FilterGroup, FilteredSums, Footprint, Splat, SplatSum};
 use crate::color::Rgb;
 
 /// Running sums for one pixel, in `f64` so long renders do not lose precision.
@@ -57,11 +61,17 @@ impl PixelStats {
     /// The pixel's estimate: weighted mean radiance.
     #[must_use]
     pub fn mean(&self) -> Rgb {
+        let [r, g, b] = self.mean_f64();
+        Rgb::new(r as f32, g as f32, b as f32)
+    }
+
+    /// [`Self::mean`] in `f64` (zero without weight).
+    #[must_use]
+    pub fn mean_f64(&self) -> [f64; 3] {
         if self.sum_w == 0.0 {
-            return Rgb::BLACK;
+            return [0.0; 3];
         }
-        let m = |c: usize| (self.sum_wl[c] / self.sum_w) as f32;
-        Rgb::new(m(0), m(1), m(2))
+        self.sum_wl.map(|v| v / self.sum_w)
     }
 
     /// Estimated variance of [`Self::mean`] per channel (0 with fewer than two samples).
@@ -93,6 +103,8 @@ pub struct Film {
     /// Sum of the splats landing in each pixel (fixed point: the order they land in does
     /// not matter).
     splats: Vec<SplatSum>,
+    /// Under filter splatting, each pixel's sums of filter-weighted samples (fixed point).
+    filtered: Option<Vec<FilteredSums>>,
     /// Samples per pixel rendered (sample indices, counting dropped non-finite samples).
     samples_per_pixel: u64,
 }
@@ -107,8 +119,33 @@ impl Film {
             height,
             pixels: vec![PixelStats::default(); n],
             splats: vec![SplatSum::ZERO; n],
+            filtered: None,
             samples_per_pixel: 0,
         }
+    }
+
+    /// An empty film for filter splatting: camera samples go to [`Self::add_filtered`].
+    #[must_use]
+    pub fn for_filter_splatting(width: u32, height: u32) -> Self {
+        let mut f = Self::new(width, height);
+        f.filtered = Some(vec![FilteredSums::ZERO; f.pixels.len()]);
+        f
+    }
+
+    /// The film with `filtered` as its filter-splatting sums (as a checkpoint stores them);
+    /// `None` when the length does not match the size.
+    #[must_use]
+    pub fn with_filtered_sums(mut self, filtered: Vec<FilteredSums>) -> Option<Self> {
+        (filtered.len() == self.pixels.len()).then(|| {
+            self.filtered = Some(filtered);
+            self
+        })
+    }
+
+    /// The filter-splatting sums, row-major (`None` for a film of filter sampling).
+    #[must_use]
+    pub fn filtered_sums(&self) -> Option<&[FilteredSums]> {
+        self.filtered.as_deref()
     }
 
     /// A film from its parts (as a checkpoint stores them); `None` when the lengths do not
@@ -127,6 +164,7 @@ impl Film {
             height,
             pixels,
             splats,
+            filtered: None,
             samples_per_pixel,
         })
     }
@@ -195,26 +233,39 @@ impl Film {
     /// film is the same as when adding them one by one. Returns the number dropped.
     pub fn add_splats(&mut self, splats: &[Splat], filter: &Filter) -> u64 {
         let (w, h) = (self.width, self.height);
-        if w == 0 || h == 0 {
-            return splats.len() as u64;
+        in_bands(splats, filter, w, h, &mut self.splats, spread)
+    }
+
+    /// Add one sample index's camera samples under filter splatting: each [`Splat`] is a
+    /// sample's film position and radiance, and adds `f(p - c) L` and `f(p - c)` to the
+    /// group of every pixel `c` the filter covers (in parallel over bands of rows, exact in
+    /// any order); then each pixel of `window` adds its group to its sums (pixels outside
+    /// are another film's, e.g. another machine's: see `RenderSession::set_window`).
+    /// Returns the number of samples reaching no pixel and of groups refused (a term not
+    /// finite or too large).
+    ///
+    /// # Panics
+    /// When the film is not one of filter splatting ([`Self::for_filter_splatting`]).
+    pub fn add_filtered(&mut self, samples: &[Splat], filter: &Filter, window: Footprint) -> u64 {
+        let (w, h) = (self.width, self.height);
+        let sums = self.filtered.as_mut().expect("a film of filter splatting");
+        let mut groups = vec![FilterGroup::default(); sums.len()];
+        let dropped = in_bands(samples, filter, w, h, &mut groups, spread_filtered);
+        if w == 0 {
+            return dropped;
         }
-        let footprints: Vec<Option<Footprint>> = splats.par_iter().map(|s| s.footprint(filter, w, h)).collect();
-        let dropped = footprints.iter().filter(|f| f.is_none()).count() as u64;
-        let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
-        let band_rows = (h as usize).div_ceil(bands);
-        self.splats
-            .par_chunks_mut(band_rows * w as usize)
+        let refused: u64 = sums
+            .par_chunks_mut(w as usize)
+            .zip(groups.par_chunks(w as usize))
             .enumerate()
-            .for_each(|(b, band)| {
-                let y0 = (b * band_rows) as u32;
-                let rows = y0..y0 + (band.len() / w as usize) as u32;
-                for (s, fp) in splats.iter().zip(&footprints) {
-                    if let Some(fp) = fp {
-                        spread(s, fp, filter, rows.clone(), w, band);
-                    }
-                }
-            });
-        dropped
+            .filter(|(y, _)| (window.y0..window.y1).contains(&(*y as u32)))
+            .map(|(_, (row, g))| {
+                let cols = window.x0.min(w) as usize..window.x1.min(w) as usize;
+                let kept = row[cols.clone()].iter_mut().zip(&g[cols]).filter(|(_, g)| !g.is_zero());
+                kept.map(|(s, g)| u64::from(!s.add_group(g))).sum::<u64>()
+            })
+            .sum();
+        dropped + refused
     }
 
     /// Add another film's samples of the same image (e.g. a later wave of samples): the
@@ -223,12 +274,17 @@ impl Film {
     /// continues a film instead, which is exact. The splat sums add exactly.)
     ///
     /// # Panics
-    /// When the sizes differ.
+    /// When the sizes differ, or one film is of filter splatting and the other not.
     pub fn merge(&mut self, other: &Self) {
         assert_eq!(
             (self.width, self.height),
             (other.width, other.height),
             "films of different sizes"
+        );
+        assert_eq!(
+            self.filtered.is_some(),
+            other.filtered.is_some(),
+            "films of different reconstructions"
         );
         for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
             a.merge(b);
@@ -236,17 +292,29 @@ impl Film {
         for (a, b) in self.splats.iter_mut().zip(&other.splats) {
             a.merge(b);
         }
+        self.merge_filtered(other);
         self.samples_per_pixel += other.samples_per_pixel;
     }
 
+    /// Add `other`'s filter-splatting sums to this film's (both have them, or neither).
+    fn merge_filtered(&mut self, other: &Self) {
+        if let (Some(a), Some(b)) = (&mut self.filtered, &other.filtered) {
+            a.iter_mut().zip(b).for_each(|(a, b)| a.merge(b));
+        }
+    }
+
     /// Combine the film of another part of the same image rendered with the same samples
-    /// (e.g. other tiles, rendered on another machine): each pixel takes the samples of the
-    /// one film that rendered it, and the splat sums add. Exact, in any order: the result
-    /// has the bits of a film rendered whole.
+    /// (e.g. other tiles, rendered on another machine): each pixel takes the samples (or
+    /// filtered sums) of the one film that rendered it, and the splat sums add. Exact, in
+    /// any order: the result has the bits of a film rendered whole.
     ///
     /// # Errors
-    /// When the sizes or the samples per pixel differ, or a pixel was rendered in both.
+    /// When the sizes, the samples per pixel or the reconstructions differ, or a pixel was
+    /// rendered in both.
     pub fn combine_disjoint(&mut self, other: &Self) -> Result<(), String> {
+        if self.filtered.is_some() != other.filtered.is_some() {
+            return Err("films of different reconstructions (filter sampling and splatting)".into());
+        }
         if (self.width, self.height) != (other.width, other.height) {
             return Err(format!(
                 "films of different sizes ({}x{} and {}x{})",
@@ -260,7 +328,9 @@ impl Film {
             ));
         }
         let empty = PixelStats::default();
-        if let Some(i) = (0..self.pixels.len()).find(|&i| self.pixels[i] != empty && other.pixels[i] != empty) {
+        let rendered =
+            |f: &Self, i: usize| f.pixels[i] != empty || f.filtered.as_ref().is_some_and(|s| !s[i].is_zero());
+        if let Some(i) = (0..self.pixels.len()).find(|&i| rendered(self, i) && rendered(other, i)) {
             let w = self.width as usize;
             return Err(format!("pixel ({}, {}) was rendered in both films", i % w, i / w));
         }
@@ -272,34 +342,106 @@ impl Film {
         for (a, b) in self.splats.iter_mut().zip(&other.splats) {
             a.merge(b);
         }
+        // Under filter splatting each film holds its own window's pixels, whole (the
+        // session renders the samples of the neighbours their filter reaches).
+        if let (Some(a), Some(b)) = (&mut self.filtered, &other.filtered) {
+            for (a, b) in a.iter_mut().zip(b) {
+                if !b.is_zero() {
+                    *a = *b;
+                }
+            }
+        }
         Ok(())
     }
 
-    /// The estimate of every pixel: the mean of its samples plus its splats over the spp.
+    /// The estimate of every pixel: the mean of its samples (or, under filter splatting,
+    /// the ratio of its filtered sums) plus its splats over the spp.
     #[must_use]
     pub fn mean_image(&self) -> Vec<Rgb> {
         let spp = self.samples_per_pixel as f64;
-        self.pixels
-            .iter()
-            .zip(&self.splats)
-            .map(|(p, s)| {
+        (0..self.pixels.len())
+            .map(|i| {
+                let s = &self.splats[i];
                 if s.is_zero() || spp == 0.0 {
-                    return p.mean();
+                    return match &self.filtered {
+                        Some(f) => f[i].mean(),
+                        None => self.pixels[i].mean(),
+                    };
                 }
-                let s = s.to_f64();
-                let m = |c: usize| {
-                    let mean = if p.sum_w == 0.0 { 0.0 } else { p.sum_wl[c] / p.sum_w };
-                    (mean + s[c] / spp) as f32
+                let own = match &self.filtered {
+                    Some(f) => f[i].mean_f64(),
+                    None => self.pixels[i].mean_f64(),
                 };
+                let s = s.to_f64();
+                let m = |c: usize| (own[c] + s[c] / spp) as f32;
                 Rgb::new(m(0), m(1), m(2))
             })
             .collect()
     }
 
-    /// The variance of every pixel's estimate (its own samples; splats are not counted).
+    /// The variance of every pixel's estimate (its own samples, or its filtered sums under
+    /// filter splatting; splats are not counted).
     #[must_use]
     pub fn variance_image(&self) -> Vec<Rgb> {
-        self.pixels.iter().map(PixelStats::variance_of_mean).collect()
+        match &self.filtered {
+            Some(f) => f.iter().map(|s| s.variance_of_mean(self.samples_per_pixel)).collect(),
+            None => self.pixels.iter().map(PixelStats::variance_of_mean).collect(),
+        }
+    }
+}
+
+/// Add `items` to the per-pixel sums `sums` (row-major, `w x h`) in parallel over bands of
+/// rows of the current rayon pool, `add(item, footprint, filter, band rows, w, band)` adding
+/// the part of one item that falls on a band. Returns the number of items reaching no pixel
+/// (or refused by [`Splat::footprint`]).
+fn in_bands<S: Send>(
+    items: &[Splat],
+    filter: &Filter,
+    w: u32,
+    h: u32,
+    sums: &mut [S],
+    add: fn(&Splat, &Footprint, &Filter, std::ops::Range<u32>, u32, &mut [S]),
+) -> u64 {
+    if w == 0 || h == 0 {
+        return items.len() as u64;
+    }
+    let footprints: Vec<Option<Footprint>> = items.par_iter().map(|s| s.footprint(filter, w, h)).collect();
+    let dropped = footprints.iter().filter(|f| f.is_none()).count() as u64;
+    let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
+    let band_rows = (h as usize).div_ceil(bands);
+    sums.par_chunks_mut(band_rows * w as usize)
+        .enumerate()
+        .for_each(|(b, band)| {
+            let y0 = (b * band_rows) as u32;
+            let rows = y0..y0 + (band.len() / w as usize) as u32;
+            for (s, fp) in items.iter().zip(&footprints) {
+                if let Some(fp) = fp {
+                    add(s, fp, filter, rows.clone(), w, band);
+                }
+            }
+        });
+    dropped
+}
+
+/// Add the part of camera sample `s` (footprint `fp`) that falls on image rows `rows` to
+/// their groups `sums` (as [`spread`]), with the filter's value as the weight.
+fn spread_filtered(
+    s: &Splat,
+    fp: &Footprint,
+    filter: &Filter,
+    rows: std::ops::Range<u32>,
+    width: u32,
+    sums: &mut [FilterGroup],
+) {
+    for y in fp.y0.max(rows.start)..fp.y1.min(rows.end) {
+        let row = (y - rows.start) as usize * width as usize;
+        for x in fp.x0..fp.x1 {
+            let wgt = s.weight(filter, 1.0, x, y);
+            if wgt != 0.0 {
+                // Refused only when a term overflows the fixed point: that pixel alone.
+                sums[row + x as usize].add(s.l, wgt);
+            }
+        }
     }
 }
 

@@ -33,11 +33,11 @@ impl FilmStatistics {
         let n = image.len().max(1) as f64;
         let mut sum = [0.0f64; 3];
         let mut var = 0.0f64;
-        for (p, m) in film.pixels().iter().zip(&image) {
+        for (v, m) in film.variance_image().iter().zip(&image) {
             for (c, s) in sum.iter_mut().enumerate() {
                 *s += f64::from(m[c]);
             }
-            var += f64::from(p.variance_of_mean().luminance());
+            var += f64::from(v.luminance());
         }
         let rel_mse = reference.map(|r| {
             assert_eq!(r.len(), image.len(), "reference of a different size");

@@ -16,6 +16,7 @@ pub struct Frame {
 impl Frame {
     /// A frame around the unit vector `n`, with tangents from Duff et al. 2017
     /// ("Building an orthonormal basis, revisited"), continuous except at `n.z = -0`.
+    #[inline]
     #[must_use]
     pub fn from_z(n: Vec3) -> Self {
         let sign = 1.0f32.copysign(n.z);
@@ -28,6 +29,7 @@ impl Frame {
 
     /// A frame with normal `n` whose first tangent is `t` made orthogonal to `n`
     /// (falls back to `from_z` when `t` is parallel to `n`).
+    #[inline]
     #[must_use]
     pub fn from_zx(n: Vec3, t: Vec3) -> Self {
         let x = (t - n * n.dot(t)).try_normalize();

@@ -120,6 +120,15 @@ pub enum RenderError {
         /// The image size.
         size: (u32, u32),
     },
+    /// A film kept for the other reconstruction than the scene's (filter sampling or
+    /// splatting).
+    #[error("film of filter {found}, but the scene asks for filter {expected}")]
+    FilmReconstruction {
+        /// The scene's ("sampling" or "splatting").
+        expected: &'static str,
+        /// The film's.
+        found: &'static str,
+    },
     /// A film of another size than the scene's.
     #[error("film of {}x{} for a {}x{} image", found.0, found.1, expected.0, expected.1)]
     FilmSize {

@@ -11,7 +11,7 @@ use super::{
     doubling_waves, is_cancelled, tiles_within, RenderError, RenderObserver, RenderOptions, RenderOutput, RenderStats,
     Tile,
 };
-use crate::film::{Film, Filter, PixelStats, Splat};
+use crate::film::{Film, Filter, Footprint, PixelStats, Reconstruction, Splat};
 use crate::integrator::{Integrator, TraceStats};
 use crate::math::{UVec2, Vec2};
 use crate::sampling::Sampler;
@@ -25,7 +25,12 @@ pub struct RenderSession<'s> {
     pool: rayon::ThreadPool,
     threads: usize,
     tile_size: u32,
+    /// The pixels this session renders (the whole image unless [`Self::set_window`]).
+    window: Tile,
     tiles: Vec<Tile>,
+    /// Under filter splatting with a window: tiles of the pixels around it whose samples
+    /// the filter carries into it; only their filtered samples are kept.
+    margin_tiles: Vec<Tile>,
     film: Film,
     /// The first sample index of the next range; `None` until something is rendered.
     next_sample: Option<u32>,
@@ -34,6 +39,9 @@ pub struct RenderSession<'s> {
 /// One tile's share of a wave.
 struct TileResult {
     pixels: Vec<PixelStats>,
+    /// Under filter splatting, the camera samples (film position, radiance) for the film's
+    /// filtered sums; empty otherwise.
+    filtered: Vec<Splat>,
     splats: Vec<Splat>,
     trace: TraceStats,
     nonfinite: u64,
@@ -42,7 +50,11 @@ struct TileResult {
 impl<'s> RenderSession<'s> {
     /// A session with an empty film.
     pub fn new(scene: &'s Scene, opts: &RenderOptions) -> Result<Self, RenderError> {
-        let film = Film::new(scene.film.width, scene.film.height);
+        let (w, h) = (scene.film.width, scene.film.height);
+        let film = match scene.reconstruction {
+            Reconstruction::FilterSampling => Film::new(w, h),
+            Reconstruction::FilterSplatting => Film::for_filter_splatting(w, h),
+        };
         Self::build(scene, opts, film, None)
     }
 
@@ -61,6 +73,14 @@ impl<'s> RenderSession<'s> {
                 found: (film.width(), film.height()),
             });
         }
+        let name = |splatting: bool| if splatting { "splatting" } else { "sampling" };
+        let (wanted, found) = (splatting(scene), film.filtered_sums().is_some());
+        if wanted != found {
+            return Err(RenderError::FilmReconstruction {
+                expected: name(wanted),
+                found: name(found),
+            });
+        }
         Self::build(scene, opts, film, Some(next_sample))
     }
 
@@ -77,21 +97,21 @@ impl<'s> RenderSession<'s> {
             .map_err(|source| RenderError::ThreadPool { threads, source })?;
         let integrator = Integrator::new(scene)?;
         let tile_size = opts.tile_size.max(1);
+        let window = Tile {
+            x0: 0,
+            y0: 0,
+            x1: scene.film.width,
+            y1: scene.film.height,
+        };
         Ok(Self {
             scene,
             integrator,
             pool,
             threads,
             tile_size,
-            tiles: tiles_within(
-                Tile {
-                    x0: 0,
-                    y0: 0,
-                    x1: scene.film.width,
-                    y1: scene.film.height,
-                },
-                tile_size,
-            ),
+            window,
+            tiles: tiles_within(window, tile_size),
+            margin_tiles: Vec::new(),
             film,
             next_sample,
         })
@@ -129,13 +149,25 @@ impl<'s> RenderSession<'s> {
 
     /// Render only the pixels of `window` from now on (e.g. one machine's share of the
     /// image); the other pixels' accumulators are left as they are. The splats of the
-    /// window's paths still land on any pixel.
+    /// window's paths still land on any pixel. Under filter splatting the window's pixels
+    /// are rendered whole: the samples of the pixels around it that the filter reaches are
+    /// rendered too (as the film of those pixels renders them) and splatted into the
+    /// window only, so films of disjoint windows combine into the whole image's bits.
     pub fn set_window(&mut self, window: Tile) -> Result<(), RenderError> {
         let size = (self.film.width(), self.film.height());
         if window.x0 >= window.x1 || window.y0 >= window.y1 || window.x1 > size.0 || window.y1 > size.1 {
             return Err(RenderError::Window { window, size });
         }
+        self.window = window;
         self.tiles = tiles_within(window, self.tile_size);
+        self.margin_tiles = if splatting(self.scene) {
+            margin_around(window, size, self.scene.filter.radius())
+                .into_iter()
+                .flat_map(|m| tiles_within(m, self.tile_size))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(())
     }
 
@@ -214,7 +246,9 @@ impl<'s> RenderSession<'s> {
             threads: self.threads,
             ..Default::default()
         };
-        let wave = if self.integrator.splats() {
+        // Splats (of light paths or of filtered camera samples) land on other tiles' pixels:
+        // one sample index per wave, so that they are committed before the next.
+        let wave = if self.integrator.splats() || splatting(self.scene) {
             1
         } else {
             range.end.saturating_sub(range.start).max(1)
@@ -274,33 +308,45 @@ impl<'s> RenderSession<'s> {
         }
         let n = u64::from(samples.end - samples.start);
         let (scene, integrator, film) = (self.scene, &self.integrator, &self.film);
+        let splatting = splatting(scene);
+        let owned = self.tiles.len();
         let results: Vec<Option<TileResult>> = self.pool.install(|| {
             self.tiles
                 .par_iter()
-                .map(|tile| {
+                .chain(self.margin_tiles.par_iter())
+                .enumerate()
+                .map(|(k, tile)| {
                     if cancelled() {
                         return None;
                     }
+                    // Under filter splatting the samples go to the film's filtered sums and
+                    // the accumulators stay empty: nothing to continue.
                     let pixels = (0..tile.pixel_count() as usize)
                         .map(|i| {
                             let (x, y) = tile.pixel_at(i);
                             *film.pixel(x, y)
                         })
+                        .take(if splatting { 0 } else { usize::MAX })
                         .collect();
                     let r = render_tile(scene, integrator, tile, samples.clone(), pixels);
-                    observer.tile_finished(tile, &r.pixels);
-                    let work = tile.pixel_count() * n;
-                    observer.progress(done.fetch_add(work, Ordering::Relaxed) + work, total);
+                    if k < owned {
+                        observer.tile_finished(tile, &r.pixels);
+                        let work = tile.pixel_count() * n;
+                        observer.progress(done.fetch_add(work, Ordering::Relaxed) + work, total);
+                    }
                     Some(r)
                 })
                 .collect()
         });
-        let Some(results) = results.into_iter().collect::<Option<Vec<_>>>() else {
+        let Some(mut results) = results.into_iter().collect::<Option<Vec<_>>>() else {
             return Err(RenderError::Cancelled {
                 samples_done: self.film.samples_per_pixel(),
             });
         };
+        // The margin's own light-path splats and figures are its owner's.
+        let margin = results.split_off(owned);
         for (tile, r) in self.tiles.iter().zip(&results) {
+            // (Empty under filter splatting.)
             for (i, p) in r.pixels.iter().enumerate() {
                 let (x, y) = tile.pixel_at(i);
                 *self.film.pixel_mut(x, y) = *p;
@@ -310,6 +356,23 @@ impl<'s> RenderSession<'s> {
         }
         let (film, filter, pool) = (&mut self.film, &self.scene.filter, &self.pool);
         stats.dropped_splats += pool.install(|| commit_splats(film, &results, filter));
+        if splatting {
+            let samples: Vec<Splat> = results
+                .iter()
+                .chain(&margin)
+                .flat_map(|r| r.filtered.iter().copied())
+                .collect();
+            let w = &self.window;
+            let window = Footprint {
+                x0: w.x0,
+                x1: w.x1,
+                y0: w.y0,
+                y1: w.y1,
+            };
+            // Samples dropped here carried a huge radiance or fell where the filter (narrower
+            // than a pixel) reaches no pixel centre: they count like dropped splats.
+            stats.dropped_splats += pool.install(|| film.add_filtered(&samples, filter, window));
+        }
         self.film.add_samples_per_pixel(n);
         Ok(())
     }
@@ -326,7 +389,43 @@ fn commit_splats(film: &mut Film, results: &[TileResult], filter: &Filter) -> u6
     film.add_splats(&splats, filter)
 }
 
-/// Continue the tile's accumulators (`pixels`, in tile order) with the given samples.
+/// The strips around `window` (inside the `size` image) holding the pixels whose samples a
+/// filter of `radius` carries into the window: a sample in pixel `j` (anywhere in
+/// `[j, j + 1)`) reaches the centre `c + 1/2` of pixel `c` when `|j - c| < radius + 1/2`,
+/// so `ceil(radius + 1/2)` pixels (the box's edge included) on each side.
+fn margin_around(window: Tile, size: (u32, u32), radius: Vec2) -> Vec<Tile> {
+    let reach = |r: f32| (r + 0.5).ceil().clamp(0.0, u32::MAX as f32) as u32;
+    let (mx, my) = (reach(radius.x), reach(radius.y));
+    let outer = Tile {
+        x0: window.x0.saturating_sub(mx),
+        y0: window.y0.saturating_sub(my),
+        x1: window.x1.saturating_add(mx).min(size.0),
+        y1: window.y1.saturating_add(my).min(size.1),
+    };
+    let strips = [
+        // Above and below, the whole outer width; left and right, the window's rows.
+        (outer.x0, outer.y0, outer.x1, window.y0),
+        (outer.x0, window.y1, outer.x1, outer.y1),
+        (outer.x0, window.y0, window.x0, window.y1),
+        (window.x1, window.y0, outer.x1, window.y1),
+    ];
+    strips
+        .into_iter()
+        .filter(|&(x0, y0, x1, y1)| x0 < x1 && y0 < y1)
+        .map(|(x0, y0, x1, y1)| Tile { x0, y0, x1, y1 })
+        .collect()
+}
+
+/// Whether the scene's film splats its camera samples through the filter.
+fn splatting(scene: &Scene) -> bool {
+    scene.reconstruction == Reconstruction::FilterSplatting
+}
+
+/// Continue the tile's accumulators (`pixels`, in tile order) with the given samples, or
+/// under filter splatting (`pixels` then empty), list the samples for the film's filtered
+/// sums.
+// `i` walks the tile's pixels; `pixels` is indexed by it only when not splatting (then empty).
+#[allow(clippy::needless_range_loop)]
 fn render_tile(
     scene: &Scene,
     integrator: &Integrator,
@@ -338,19 +437,34 @@ fn render_tile(
     let mut trace = TraceStats::default();
     let mut nonfinite = 0;
     let mut splats = Vec::new();
-    for (i, acc) in pixels.iter_mut().enumerate() {
+    let mut filtered = Vec::new();
+    let splatting = splatting(scene);
+    for i in 0..tile.pixel_count() as usize {
         let (x, y) = tile.pixel_at(i);
         let pixel = UVec2::new(x, y);
         for s in samples.clone() {
             sampler.start_pixel_sample(pixel, s);
+            let u = sampler.get_pixel_2d();
+            if splatting {
+                // Uniform in the pixel; the film weighs it for every pixel the filter covers.
+                let p_film = Vec2::new(x as f32, y as f32) + u;
+                let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+                let l = integrator.li(scene, ray, &mut sampler, &mut trace, &mut splats);
+                if l.is_finite() {
+                    filtered.push(Splat { p_film, l });
+                } else {
+                    nonfinite += 1;
+                }
+                continue;
+            }
             // Offset drawn from the filter: the sample lands at centre + offset with a
             // weight of about one, so nothing is splatted into neighbouring pixels.
-            let fs = scene.filter.sample(sampler.get_pixel_2d());
+            let fs = scene.filter.sample(u);
             let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
             let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
             let l = integrator.li(scene, ray, &mut sampler, &mut trace, &mut splats);
             if l.is_finite() && fs.weight.is_finite() {
-                acc.add(l, fs.weight);
+                pixels[i].add(l, fs.weight);
             } else {
                 nonfinite += 1;
             }
@@ -358,6 +472,7 @@ fn render_tile(
     }
     TileResult {
         pixels,
+        filtered,
         splats,
         trace,
         nonfinite,
@@ -397,6 +512,7 @@ mod tests {
         .iter()
         .map(|t| TileResult {
             pixels: vec![PixelStats::default(); t.pixel_count() as usize],
+            filtered: Vec::new(),
             splats: (0..t.pixel_count() as usize)
                 .flat_map(|i| {
                     let (x, y) = t.pixel_at(i);

@@ -116,6 +116,19 @@ impl SceneDescription {
                 check_finite("Mitchell filter B and C", &[b, c])?;
             }
         }
+        let own_driver = matches!(
+            self.integrator.kind,
+            super::IntegratorKind::Sppm | super::IntegratorKind::Mlt
+        );
+        if self.reconstruction == crate::film::Reconstruction::FilterSplatting && own_driver {
+            return Err(invalid(
+                "filter splatting",
+                format!(
+                    "the {:?} integrator fills the film itself; expected filter sampling",
+                    self.integrator.kind
+                ),
+            ));
+        }
         for (i, m) in self.materials.iter().enumerate() {
             m.validate(i, self.materials.len())?;
         }
@@ -618,6 +631,7 @@ impl Scene {
             camera: Camera::new(&desc.camera, &desc.film, filter.radius()),
             filter,
             film: desc.film,
+            reconstruction: desc.reconstruction,
             sampler: desc.sampler,
             integrator: desc.integrator,
             instances,

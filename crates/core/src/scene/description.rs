@@ -5,7 +5,7 @@
 
 pub use crate::camera::{CameraDesc, Projection};
 use crate::color::Rgb;
-pub use crate::film::{FilmDesc, FilterDesc};
+pub use crate::film::{FilmDesc, FilterDesc, Reconstruction};
 pub use crate::light::{EnvMapping, LightSelection, SpotFalloff};
 pub use crate::material::{
     CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial,
@@ -25,6 +25,8 @@ pub struct SceneDescription {
     pub film: FilmDesc,
     /// Pixel reconstruction filter.
     pub filter: FilterDesc,
+    /// How camera samples become pixels (filter sampling or splatting).
+    pub reconstruction: Reconstruction,
     /// Sample generator and sample count.
     pub sampler: SamplerDesc,
     /// Light transport algorithm.

@@ -82,6 +82,8 @@ pub struct Scene {
     pub filter: Filter,
     /// Image size.
     pub film: FilmDesc,
+    /// How camera samples become pixels.
+    pub reconstruction: crate::film::Reconstruction,
     /// Sampler settings.
     pub sampler: SamplerDesc,
     /// Integrator settings.

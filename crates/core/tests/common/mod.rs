@@ -16,6 +16,7 @@ pub fn empty_scene() -> SceneDescription {
         filter: FilterDesc::Box {
             radius: Vec2::splat(0.5),
         },
+        reconstruction: Reconstruction::default(),
         sampler: SamplerDesc {
             samples_per_pixel: 64,
             ..Default::default()

@@ -12,7 +12,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
     CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection, MaterialDesc,
-    MaterialId, Projection, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
+    MaterialId, Projection, Reconstruction, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
 };
 use mcrender_core::texture::FloatTexture;
 
@@ -90,6 +90,7 @@ impl Builder {
                 height: 576,
             },
             filter: gaussian_filter(0.5),
+            reconstruction: Reconstruction::FilterSampling,
             sampler: SamplerDesc {
                 kind: SamplerKind::Independent,
                 samples_per_pixel: 4,
@@ -177,6 +178,12 @@ impl Builder {
                 "{}: warning: no <sensor>; using Mitsuba's default perspective camera",
                 scene.loc
             ));
+        }
+        // Mitsuba's film splats every sample through its filter. With the box of radius
+        // one half that equals filter sampling (same positions, weight one), which is kept.
+        let boxed = matches!(self.desc.filter, FilterDesc::Box { radius } if radius == Vec2::splat(0.5));
+        if !boxed {
+            self.desc.reconstruction = Reconstruction::FilterSplatting;
         }
         Ok(LoadedScene {
             description: self.desc,

@@ -12,7 +12,9 @@ use std::sync::Arc;
 
 use glam::Mat4;
 use mcrender_core::math::Transform;
-use mcrender_core::scene::{LightDesc, MaterialDesc, MaterialId, ObjectDesc, SceneDescription, ShapeDesc};
+use mcrender_core::scene::{
+    LightDesc, MaterialDesc, MaterialId, ObjectDesc, Reconstruction, SceneDescription, ShapeDesc,
+};
 
 use super::files::InputFiles;
 use super::graphics_state::{GraphicsState, MaterialRef};
@@ -346,6 +348,7 @@ impl SceneBuilder {
                 camera: options.camera,
                 film: options.film,
                 filter: options.filter,
+                reconstruction: Reconstruction::default(),
                 sampler,
                 integrator: options.integrator,
                 materials,

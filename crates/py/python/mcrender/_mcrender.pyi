@@ -51,6 +51,8 @@ class Scene:
     max_depth: int
     integrator: str
     """"path", "direct", "bdpt", "lightpath", "sppm" or "mlt"."""
+    reconstruction: str
+    """"sample" (filter importance sampling, pbrt's) or "splat" (Mitsuba's filter splatting)."""
     mutations_per_pixel: int
     """MLT's length (the mlt integrator ignores spp)."""
     direct: str
