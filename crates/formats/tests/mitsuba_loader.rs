@@ -3,7 +3,8 @@
 //! input, which must give `file:line:col` and never panic.
 
 use mcrender_core::material::{
-    ConductorMaterial, DielectricMaterial, DiffuseMaterial, NormalMapMaterial, PlasticMaterial,
+    BumpHeight, BumpMapMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial, NormalMapMaterial,
+    PlasticMaterial,
 };
 use std::path::{Path, PathBuf};
 
@@ -382,6 +383,28 @@ fn normalmap_wraps_its_bsdf_with_a_raw_texture() {
     assert!(e.message.contains("normalmap"), "{e}");
     let e = err("<bsdf type=\"normalmap\"><texture name=\"normalmap\" type=\"rawconstant\"><vector name=\"value\" value=\"0.5, 0.5, 1.0\"/></texture></bsdf>");
     assert!(e.message.contains("nested bsdf"), "{e}");
+}
+
+#[test]
+fn bumpmap_wraps_its_bsdf_with_a_texture_of_any_name_and_a_scale() {
+    let m = materials(&[
+        "<bsdf type=\"bumpmap\"><float name=\"scale\" value=\"0.02\"/><texture name=\"heights\" type=\"rawconstant\"><float name=\"value\" value=\"0.3\"/></texture><bsdf type=\"diffuse\"/></bsdf>",
+    ]);
+    let MaterialDesc::BumpMap(BumpMapMaterial {
+        height: BumpHeight::Mitsuba { texture, scale },
+        ..
+    }) = &m[0]
+    else {
+        panic!("{m:?}")
+    };
+    assert_eq!(*scale, 0.02);
+    assert_eq!(texture.constant(), Some(Rgb::splat(0.3)));
+    let e = err("<bsdf type=\"bumpmap\"><bsdf type=\"diffuse\"/></bsdf>");
+    assert!(e.message.contains("one nested texture"), "{e}");
+    let e = err(
+        "<bsdf type=\"bumpmap\"><texture type=\"rawconstant\"><float name=\"value\" value=\"0.3\"/></texture></bsdf>",
+    );
+    assert!(e.message.contains("one nested bsdf"), "{e}");
 }
 
 #[test]

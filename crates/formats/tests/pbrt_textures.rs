@@ -1,7 +1,7 @@
 //! `Texture` and `"texture ..."` parameters: each class, the texture graph they build, the
 //! errors, image decoding, and a render whose mean radiance is the texture's mean.
 
-use mcrender_core::material::{ConductorMaterial, DiffuseMaterial};
+use mcrender_core::material::{BumpHeight, BumpMapMaterial, ConductorMaterial, DiffuseMaterial, NormalMapMaterial};
 use std::path::Path;
 
 use mcrender_core::color::{srgb_to_linear, Rgb};
@@ -272,19 +272,69 @@ fn texture_errors_say_where_and_what() {
 }
 
 #[test]
-fn displacement_and_normal_maps_are_warned_about() {
+fn displacement_becomes_a_bump_map_and_normalmap_a_normal_map() {
     let s = load(
-        "Texture \"b\" \"float\" \"constant\"\nMaterial \"diffuse\" \"texture displacement\" \"b\" \"string normalmap\" \"n.png\"",
+        "Texture \"b\" \"float\" \"constant\" \"float value\" 0.25\nMaterial \"diffuse\" \"texture displacement\" \"b\"",
         Path::new(""),
     )
     .unwrap();
-    for name in ["texture displacement", "string normalmap"] {
-        assert!(
-            s.warnings.iter().any(|w| w.contains(name) && w.contains("ignored")),
-            "{name}: {:?}",
-            s.warnings
-        );
-    }
+    assert!(!s.warnings.iter().any(|w| w.contains("ignored")), "{:?}", s.warnings);
+    let d = &s.description;
+    let MaterialDesc::BumpMap(BumpMapMaterial {
+        material,
+        height: BumpHeight::Pbrt { displacement },
+    }) = &d.materials[d.shapes[0].material as usize]
+    else {
+        panic!("{:?}", d.materials)
+    };
+    assert_eq!(displacement, &Texture::Constant(0.25));
+    assert!(matches!(d.materials[*material as usize], MaterialDesc::Diffuse(_)));
+
+    // The normal map is read linearly (128 -> 128/255, no sRGB curve), row 0 at v = 1.
+    let tmp = tempfile::tempdir().unwrap();
+    write_png(&tmp.path().join("n.png"), 2, 2, |_, y| {
+        if y == 0 {
+            [128, 128, 255]
+        } else {
+            [255, 128, 128]
+        }
+    });
+    let s = load("Material \"conductor\" \"string normalmap\" \"n.png\"", tmp.path()).unwrap();
+    assert!(!s.warnings.iter().any(|w| w.contains("ignored")), "{:?}", s.warnings);
+    let d = &s.description;
+    let MaterialDesc::NormalMap(NormalMapMaterial { material, normal_map }) =
+        &d.materials[d.shapes[0].material as usize]
+    else {
+        panic!("{:?}", d.materials)
+    };
+    assert!(matches!(d.materials[*material as usize], MaterialDesc::Conductor(_)));
+    let c = 128.0 / 255.0;
+    let texel = normal_map.evaluate(&at((0.25, 0.75)));
+    assert!((texel - Rgb::new(c, c, 1.0)).max_component().abs() < 1e-6, "{texel:?}");
+    let texel = normal_map.evaluate(&at((0.25, 0.25)));
+    assert!((texel - Rgb::new(1.0, c, c)).max_component().abs() < 1e-6, "{texel:?}");
+
+    // Both: the displacement wins, the normal map is warned about.
+    let s = load(
+        "Material \"diffuse\" \"float displacement\" 0.1 \"string normalmap\" \"n.png\"",
+        tmp.path(),
+    )
+    .unwrap();
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.contains("normalmap") && w.contains("ignored")),
+        "{:?}",
+        s.warnings
+    );
+    let d = &s.description;
+    assert!(matches!(
+        d.materials[d.shapes[0].material as usize],
+        MaterialDesc::BumpMap(_)
+    ));
+    // A missing image is an error with its position.
+    let (_, e) = error("Material \"diffuse\" \"string normalmap\" \"missing.png\"", tmp.path());
+    assert!(e.starts_with("scene.pbrt:2:") && e.contains("missing.png"), "{e}");
 }
 
 #[test]
@@ -361,4 +411,50 @@ fn pixel_footprints_filter_a_checkerboard_finer_than_the_pixels() {
     let checks = mean_pixel_variance(&scene("Material \"diffuse\" \"texture reflectance\" \"cb\""));
     eprintln!("mean pixel variance: grey {grey:.3e}, filtered checks {checks:.3e}");
     assert!(checks < 1.5 * grey + 1e-6, "grey {grey:.3e}, checks {checks:.3e}");
+}
+
+#[test]
+fn a_normal_map_tilts_the_cosine_of_a_diffuse_plane_under_a_distant_light() {
+    // The light arrives along the view axis, perpendicular to the plane; a constant
+    // normal map tilts the shading normal by theta, so every pixel is (R / pi) L cos theta
+    // with cos theta the normalised map's z (a direct light on a diffuse: no noise).
+    let tmp = tempfile::tempdir().unwrap();
+    let rgb = [210u8, 128, 225];
+    write_png(&tmp.path().join("n.png"), 2, 2, |_, _| rgb);
+    let n = rgb.map(|v| 2.0 * f64::from(v) / 255.0 - 1.0);
+    let cos = n[2] / (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    assert!(cos < 0.8, "a real tilt: {cos}");
+    let scene = |normalmap: &str| {
+        format!(
+            "LookAt 0 0 0  0 0 1  0 1 0\n\
+             Camera \"perspective\" \"float fov\" 60\n\
+             Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n\
+             Sampler \"independent\" \"integer pixelsamples\" 4\n\
+             Integrator \"path\" \"integer maxdepth\" 1\n\
+             WorldBegin\n\
+             LightSource \"distant\" \"point3 from\" [0 0 0] \"point3 to\" [0 0 1] \"rgb L\" [1 1 1]\n\
+             Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5] {normalmap}\n\
+             Shape \"trianglemesh\" \"point3 P\" [-3 -3 1  3 -3 1  3 3 1  -3 3 1] \"integer indices\" [0 1 2 0 2 3] \"point2 uv\" [1 0  0 0  0 1  1 1]\n"
+        )
+    };
+    let mean = |src: &str| {
+        let s = load_str(src, "scene.pbrt", tmp.path()).unwrap_or_else(|e| panic!("{e}"));
+        let out = render(
+            &Scene::build(&s.description).unwrap(),
+            &RenderOptions::default(),
+            &|_, _| {},
+        )
+        .unwrap();
+        let pixels = out.film.pixels();
+        pixels.iter().map(|p| f64::from(p.mean().g)).sum::<f64>() / pixels.len() as f64
+    };
+    let flat = mean(&scene(""));
+    let expected = 0.5 / std::f64::consts::PI;
+    assert!((flat - expected).abs() < 1e-3 * expected, "{flat} vs {expected}");
+    let tilted = mean(&scene("\"string normalmap\" \"n.png\""));
+    assert!(
+        (tilted - expected * cos).abs() < 1e-3 * expected,
+        "{tilted} vs {}",
+        expected * cos
+    );
 }

@@ -8,12 +8,13 @@
 //! called when a scene is built) and the BSDF it makes. The coated materials build their
 //! stochastic `LayeredBxdf` per hit from their evaluated textures (a small `Copy` value).
 //!
-//! Three materials are not surfaces themselves: [`MaterialDesc::Mix`] names two others
+//! Four materials are not surfaces themselves: [`MaterialDesc::Mix`] names two others
 //! and picks one per shading point ([`MaterialDesc::mix_choice`]; the scene follows the
-//! choice, see `Scene::bsdf`), [`MaterialDesc::NormalMap`] moves the shading frame and
-//! names the material shaded in it, and [`MaterialDesc::Interface`] has no BSDF at all, so
+//! choice, see `Scene::bsdf`), [`MaterialDesc::NormalMap`] and [`MaterialDesc::BumpMap`]
+//! move the shading frame and name the material shaded in it, and [`MaterialDesc::Interface`] has no BSDF at all, so
 //! rays pass through it.
 
+mod bump_map;
 mod checks;
 mod coated_conductor;
 mod coated_diffuse;
@@ -30,6 +31,7 @@ mod plastic;
 mod test_support;
 mod thin_dielectric;
 
+pub use bump_map::{BumpHeight, BumpMapMaterial};
 pub use checks::{check_finite, check_non_negative, float_constants, rgb_constant, InvalidParameter};
 pub use coated_conductor::CoatedConductorMaterial;
 pub use coated_diffuse::CoatedDiffuseMaterial;
@@ -70,8 +72,12 @@ pub enum MaterialDesc {
     CoatedConductor(CoatedConductorMaterial),
     /// Mitsuba 3's `plastic` and `roughplastic`.
     Plastic(PlasticMaterial),
-    /// Another material under a normal map (Mitsuba 3's `normalmap`).
+    /// Another material under a normal map (Mitsuba 3's `normalmap`, pbrt-v4's
+    /// `normalmap` parameter).
     NormalMap(NormalMapMaterial),
+    /// Another material under a bump map (Mitsuba 3's `bumpmap`, pbrt-v4's
+    /// `displacement` parameter).
+    BumpMap(BumpMapMaterial),
     /// One of two materials per shading point (pbrt `mix`).
     Mix(MixMaterial),
     /// glTF 2.0's metallic-roughness material.
@@ -105,6 +111,7 @@ impl MaterialDesc {
             Self::CoatedConductor(m) => m.validate(index),
             Self::Plastic(m) => m.validate(index),
             Self::NormalMap(m) => m.validate(index, count),
+            Self::BumpMap(m) => m.validate(index, count),
             Self::Mix(m) => m.validate(index, count),
             Self::MetallicRoughness(m) => m.validate(index),
             Self::Interface => Ok(()),
@@ -117,6 +124,7 @@ impl MaterialDesc {
         match self {
             Self::Mix(m) => &m.materials,
             Self::NormalMap(m) => std::slice::from_ref(&m.material),
+            Self::BumpMap(m) => std::slice::from_ref(&m.material),
             _ => &[],
         }
     }
@@ -131,16 +139,31 @@ impl MaterialDesc {
         }
     }
 
-    /// For [`Self::NormalMap`], move the shading frame of `si` to the map's normal (see
-    /// [`NormalMapMaterial`]) and return the inner material; `None` for every other
-    /// material.
+    /// For [`Self::NormalMap`] and [`Self::BumpMap`], move the shading frame of `si` (see
+    /// [`NormalMapMaterial`], [`BumpMapMaterial`]; `ctx` the texture context at `si`, with
+    /// the pixel footprint when [`Self::is_textured`]) and return the inner material;
+    /// `None` for every other material.
     #[must_use]
-    pub fn apply_normal_map(&self, si: &mut SurfaceInteraction) -> Option<MaterialId> {
+    pub fn apply_frame(&self, si: &mut SurfaceInteraction, ctx: &TextureContext) -> Option<MaterialId> {
         match self {
             Self::NormalMap(m) => {
                 m.apply(si);
                 Some(m.material)
             }
+            Self::BumpMap(m) => {
+                m.apply(si, ctx);
+                Some(m.material)
+            }
+            _ => None,
+        }
+    }
+
+    /// The material under a normal or bump map; `None` for every other material.
+    #[must_use]
+    pub fn frame_inner(&self) -> Option<MaterialId> {
+        match self {
+            Self::NormalMap(m) => Some(m.material),
+            Self::BumpMap(m) => Some(m.material),
             _ => None,
         }
     }
@@ -159,6 +182,8 @@ impl MaterialDesc {
             Self::Plastic(m) => m.is_textured(),
             Self::Mix(m) => !m.amount.is_constant(),
             Self::MetallicRoughness(m) => m.is_textured(),
+            // (pbrt's offsets follow the pixel footprint.)
+            Self::BumpMap(m) => m.needs_footprint(),
             // (Resolved to the inner material before a BSDF is built.)
             Self::ThinDielectric(_) | Self::NormalMap(_) | Self::Interface => false,
         }
@@ -167,8 +192,8 @@ impl MaterialDesc {
     /// The BSDF at a hit, in the shading frame of `si.ns` with `si.dpdu` as first
     /// tangent, guarded by the geometric normal `si.n()`, with the textures evaluated at
     /// `ctx`; `None` for [`Self::Interface`], and for [`Self::Mix`] and
-    /// [`Self::NormalMap`] (resolve them first with [`Self::mix_choice`] and
-    /// [`Self::apply_normal_map`]).
+    /// [`Self::NormalMap`] and [`Self::BumpMap`] (resolve them first with [`Self::mix_choice`] and
+    /// [`Self::apply_frame`]).
     #[must_use]
     pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<Bsdf> {
         let bxdf = match self {
@@ -181,7 +206,7 @@ impl MaterialDesc {
             Self::CoatedConductor(m) => m.bxdf(ctx),
             Self::MetallicRoughness(m) => m.bxdf(ctx),
             Self::Plastic(m) => m.bxdf(ctx),
-            Self::Mix(_) | Self::NormalMap(_) | Self::Interface => return None,
+            Self::Mix(_) | Self::NormalMap(_) | Self::BumpMap(_) | Self::Interface => return None,
         };
         Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
     }

@@ -61,7 +61,7 @@ mod tests {
         let inner = MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: Rgb::splat(0.5).into(),
         });
-        assert_eq!(inner.apply_normal_map(&mut hit()), None);
+        assert_eq!(inner.apply_frame(&mut hit(), &TextureContext::default()), None);
         // A tilted surface, so that local and world coordinates differ.
         let mut si = hit();
         si.ns = Vec3::new(0.0, 0.6, 0.8);
@@ -75,18 +75,27 @@ mod tests {
         };
         // The identity map leaves the frame as it is.
         let mut s = si;
-        assert_eq!(map(Rgb::new(0.5, 0.5, 1.0)).apply_normal_map(&mut s), Some(3));
+        assert_eq!(
+            map(Rgb::new(0.5, 0.5, 1.0)).apply_frame(&mut s, &TextureContext::default()),
+            Some(3)
+        );
         assert!((s.ns - si.ns).length() < 1e-6 && (s.dpdu - si.dpdu).length() < 1e-6);
         // Tilt 45 degrees towards the tangent: local normal (1, 0, 1) / sqrt 2.
         let c = 0.5 + 0.5 * std::f32::consts::FRAC_1_SQRT_2;
         let mut s = si;
-        assert_eq!(map(Rgb::new(c, 0.5, c)).apply_normal_map(&mut s), Some(3));
+        assert_eq!(
+            map(Rgb::new(c, 0.5, c)).apply_frame(&mut s, &TextureContext::default()),
+            Some(3)
+        );
         let expected = (Vec3::X + si.ns).normalize();
         assert!((s.ns - expected).length() < 1e-3, "{}", s.ns);
         assert!(s.dpdu.dot(s.ns).abs() < 1e-5 && s.dpdu.dot(Vec3::X) > 0.5, "{}", s.dpdu);
         // A map pointing below the geometric surface is ignored.
         let mut s = si;
-        assert_eq!(map(Rgb::new(0.5, 0.5, 0.0)).apply_normal_map(&mut s), Some(3));
+        assert_eq!(
+            map(Rgb::new(0.5, 0.5, 0.0)).apply_frame(&mut s, &TextureContext::default()),
+            Some(3)
+        );
         assert_eq!(s.ns, si.ns);
     }
 }

@@ -538,7 +538,7 @@ impl Scene {
         desc.validate()?;
         let materials: Vec<Material> = desc.materials.iter().map(Material::from_desc).collect();
         let has_interfaces = materials.iter().any(|m| matches!(m, Material::Interface));
-        let has_normal_maps = materials.iter().any(|m| matches!(m, Material::NormalMap(_)));
+        let has_normal_maps = materials.iter().any(|m| m.frame_inner().is_some());
         let mut primitives = Vec::new();
         let mut lights = Vec::new();
         // Which description shape each primitive comes from (for messages).

@@ -129,15 +129,18 @@ impl Scene {
             }
         };
         if self.has_normal_maps {
-            // Normal maps move the shading frame where the ray lands (bounded: the
-            // description has no cycles).
+            // Normal and bump maps move the shading frame where the ray lands (bounded:
+            // the description has no cycles).
             let mut m = hit.primitive.material;
             for _ in 0..self.materials.len() {
-                match self
-                    .materials
-                    .get(m as usize)
-                    .and_then(|mat| mat.apply_normal_map(&mut hit.si))
-                {
+                let Some(mat) = self.materials.get(m as usize) else {
+                    break;
+                };
+                if mat.frame_inner().is_none() {
+                    break;
+                }
+                let ctx = self.texture_context(mat, &hit.si);
+                match mat.apply_frame(&mut hit.si, &ctx) {
                     Some(inner) => m = inner,
                     None => break,
                 }
@@ -202,7 +205,7 @@ impl Scene {
             let next = match m {
                 Material::Mix(_) => m.mix_choice(si, &self.texture_context(m, si)),
                 // (The frame was moved by `intersect`.)
-                Material::NormalMap(n) => Some(n.material),
+                Material::NormalMap(_) | Material::BumpMap(_) => m.frame_inner(),
                 _ => None,
             };
             let Some(next) = next else { break };

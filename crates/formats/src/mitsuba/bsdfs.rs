@@ -21,6 +21,10 @@
 //!   -> the nested BSDF with Mitsuba's perturbed shading frame
 //!   (`MaterialDesc::NormalMap`).
 //!
+//! * `bumpmap` (one nested texture of any name, `scale` default 1, one nested BSDF) -> the
+//!   nested BSDF with the frame tilted by `scale` times the gradient of the texture's
+//!   luminance, as Mitsuba (`MaterialDesc::BumpMap`, `BumpHeight::Mitsuba`).
+//!
 //! * `blendbsdf` (`weight`, a float or texture; two nested BSDFs): Mitsuba evaluates
 //!   `(1 - w) f0 + w f1` and samples one lobe by weight. Two `diffuse` BSDFs are exactly a
 //!   diffuse of reflectance `(1 - w) r0 + w r1` (both lobes sample the same cosine), which
@@ -28,7 +32,7 @@
 //!   shading point, chosen with probability `w`: the same expectation, with more noise
 //!   than Mitsuba's), with a warning.
 //!
-//! Not rendered (errors naming the plugin): `principled`, `principledthin`, `bumpmap`,
+//! Not rendered (errors naming the plugin): `principled`, `principledthin`,
 //! `pplastic`, `hair`, `measured`, `polarizer`, `retarder`, `circular`, `null`.
 //!
 //! Differences kept: Mitsuba's `diffuse` is black seen from behind (mcrender's reflects on
@@ -39,8 +43,8 @@ use std::sync::Arc;
 use mcrender_core::bsdf::{Masking, MicrofacetModel, MicrofacetStyle, PlasticCoat};
 use mcrender_core::color::Rgb;
 use mcrender_core::material::{
-    ConductorMaterial, DielectricMaterial, DiffuseMaterial, MixMaterial, NormalMapMaterial, PlasticMaterial,
-    ThinDielectricMaterial,
+    BumpHeight, BumpMapMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial, MixMaterial,
+    NormalMapMaterial, PlasticMaterial, ThinDielectricMaterial,
 };
 use mcrender_core::scene::MaterialDesc;
 use mcrender_core::texture::{MixTexture, RgbTexture, Texture};
@@ -225,8 +229,9 @@ impl Builder {
                 }))
             }
             "blendbsdf" => self.blendbsdf(el, &mut p)?,
-            "principled" | "principledthin" | "bumpmap" | "pplastic" | "hair" | "measured" | "polarizer"
-            | "retarder" | "circular" => return Err(Self::unsupported(el, "")),
+            "bumpmap" => self.bumpmap(el, &mut p)?,
+            "principled" | "principledthin" | "pplastic" | "hair" | "measured" | "polarizer" | "retarder"
+            | "circular" => return Err(Self::unsupported(el, "")),
             // No surface: rays pass straight through (as pbrt's interface material).
             "null" => self.plain(MaterialDesc::Interface),
             _ => return Err(Self::unsupported(el, " (unknown BSDF plugin)")),
@@ -251,6 +256,41 @@ impl Builder {
         }
         p.use_refs();
         Ok(surfaces)
+    }
+
+    /// `bumpmap` (module docs): one nested BSDF and one texture of any name.
+    fn bumpmap(&mut self, el: &Element, p: &mut Props) -> Result<Surface, SceneError> {
+        let textures: Vec<&Element> = el.children.iter().filter(|c| c.tag == "texture").collect();
+        let [tex] = textures.as_slice() else {
+            return Err(SceneError::syntax(
+                &el.loc,
+                format!("a bumpmap needs one nested texture, found {}", textures.len()),
+            ));
+        };
+        match tex.attr("name") {
+            Some(name) => {
+                p.get(name);
+            }
+            None => {
+                p.nested("texture");
+            }
+        }
+        let texture = self.rgb_texture(tex)?;
+        let scale = p.float("scale", 1.0)?;
+        let surfaces = self.nested_surfaces(p)?;
+        let [inner] = surfaces.as_slice() else {
+            return Err(SceneError::syntax(
+                &el.loc,
+                format!("a bumpmap needs one nested bsdf, found {}", surfaces.len()),
+            ));
+        };
+        Ok(Surface {
+            material: self.add_material(MaterialDesc::BumpMap(BumpMapMaterial {
+                material: inner.material,
+                height: BumpHeight::Mitsuba { texture, scale },
+            })),
+            alpha: inner.alpha.clone(),
+        })
     }
 
     /// `blendbsdf` (module docs).

@@ -103,6 +103,11 @@ impl Builder {
         }
     }
 
+    /// A texture (or colour) from its element `e` (a nested plugin of any name).
+    pub fn rgb_texture(&mut self, e: &Element) -> Result<RgbTexture, SceneError> {
+        self.param::<Rgb>(e, false)
+    }
+
     fn param<T: Value>(&mut self, e: &Element, emission: bool) -> Result<Texture<T>, SceneError> {
         match e.tag.as_str() {
             "rgb" | "spectrum" | "float" => Ok(Texture::Constant(T::from_rgb(constant_color(e, emission)?, e)?)),

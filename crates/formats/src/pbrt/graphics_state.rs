@@ -5,7 +5,7 @@
 use glam::Mat4;
 use mcrender_core::color::Rgb;
 use mcrender_core::material::DiffuseMaterial;
-use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc};
+use mcrender_core::scene::{AreaLightDesc, FloatTexture, MaterialDesc, RgbTexture};
 
 use super::params::Param;
 use crate::error::Location;
@@ -23,6 +23,14 @@ pub enum MaterialRef {
         name: String,
         /// Location of the `NamedMaterial` directive.
         loc: Location,
+    },
+    /// A material under pbrt-v4's `displacement` or `normalmap` (interned as the inner
+    /// material and a wrapper naming it).
+    Framed {
+        /// The material shaded in the moved frame.
+        inner: MaterialDesc,
+        /// How the frame moves.
+        frame: FrameMap,
     },
     /// A `mix` of two named materials, resolved like [`MaterialRef::Named`].
     Mix {
@@ -78,4 +86,13 @@ impl Default for GraphicsState {
             attributes: Attributes::default(),
         }
     }
+}
+
+/// pbrt-v4's per-material shading-frame parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FrameMap {
+    /// `texture displacement` (or `float displacement`): a bump map.
+    Displacement(FloatTexture),
+    /// `string normalmap`: the image, linear, as a bilinear repeating bitmap.
+    NormalMap(RgbTexture),
 }

@@ -4,7 +4,15 @@
 //! `"texture name" "tex"` naming a texture of the right type (see [`super::textures`]):
 //! reflectances, conductor `eta`/`k`, roughnesses, and the coated materials' `thickness`,
 //! `albedo`, `g` and their conductor's parameters, and `mix`'s `amount`. Dielectric `eta`
-//! (and `interface.eta`) stays a constant, as in pbrt-v4. Range checks apply to constants. `displacement` and `normalmap` are warned about and ignored.
+//! (and `interface.eta`) stays a constant, as in pbrt-v4. Range checks apply to constants.
+//!
+//! Every material but `mix` and `interface` also takes pbrt-v4's `displacement` (a float
+//! texture: a bump map with pbrt's finite differences, `MaterialDesc::BumpMap` with
+//! `BumpHeight::Pbrt`) and `string normalmap` (an image read as linear RGB, looked up
+//! bilinearly with repeat at `(u, 1 - v)` as pbrt-v4's `NormalMap`:
+//! `MaterialDesc::NormalMap`, whose frame is pbrt-v4's, the tangent space of the shading
+//! `dp/du` and normal). With both, the displacement is used, as in pbrt-v4, and the
+//! normal map is warned about.
 //! - `diffuse`: `reflectance` (default 0.5).
 //! - `conductor`: `eta` and `k` as `rgb` or as a named spectrum (`metal-Cu-eta`,
 //!   `metal-Au-k`, ... for Ag, Al, Au, Cu; see [`crate::spectra`]), default copper; or
@@ -31,18 +39,22 @@
 //! `hair`, `measured` and `subsurface` are reported as not supported yet.
 
 use mcrender_core::material::{
-    CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial, DiffuseMaterial,
-    DiffuseTransmissionMaterial, MixMaterial, ThinDielectricMaterial,
+    BumpHeight, BumpMapMaterial, CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial, DielectricMaterial,
+    DiffuseMaterial, DiffuseTransmissionMaterial, MixMaterial, NormalMapMaterial, ThinDielectricMaterial,
 };
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use mcrender_core::color::Rgb;
 use mcrender_core::scene::{FloatTexture, MaterialDesc, MaterialId, RgbTexture};
+use mcrender_core::texture::{BitmapFilter, BitmapTexture, BitmapWrap, Texture, TextureMapping};
 
 use super::builder::SceneBuilder;
-use super::graphics_state::MaterialRef;
+use super::files::ImageUse;
+use super::graphics_state::{FrameMap, MaterialRef};
 use super::params::{ParamSet, ParamType};
 use crate::error::{Location, SceneError};
+use crate::image_io::ColorEncoding;
 use crate::spectra::{glass_eta, metal_rgb, sampled_spectrum, spectrum_pairs, SpectrumRole, KNOWN_UNCONVERTED};
 
 /// pbrt-v4 material types that exist but are not implemented here yet.
@@ -92,7 +104,47 @@ impl SceneBuilder {
         if kind == "mix" {
             return self.mix(params);
         }
-        self.plain_material_desc(kind, params, loc).map(MaterialRef::Inline)
+        let frame = if matches!(kind, "interface" | "" | "none") {
+            None
+        } else {
+            self.frame_map(params)?
+        };
+        let inner = self.plain_material_desc(kind, params, loc)?;
+        Ok(match frame {
+            Some(frame) => MaterialRef::Framed { inner, frame },
+            None => MaterialRef::Inline(inner),
+        })
+    }
+
+    /// `displacement` or `normalmap`, when given (module docs).
+    fn frame_map(&mut self, params: &ParamSet) -> Result<Option<FrameMap>, SceneError> {
+        let displacement = if params.get("displacement").is_some() {
+            Some(self.world.textures.float(params, "displacement", 0.0)?)
+        } else {
+            None
+        };
+        let Some((file, floc)) = params.string("normalmap")? else {
+            return Ok(displacement.map(FrameMap::Displacement));
+        };
+        if let Some(d) = displacement {
+            self.warn(
+                &floc,
+                format!(
+                    "\"string normalmap\" of {} ignored: its \"displacement\" is used, as in pbrt-v4",
+                    params.owner
+                ),
+            );
+            return Ok(Some(FrameMap::Displacement(d)));
+        }
+        let image = self.read_image_file(&file, &floc, ColorEncoding::Linear, ImageUse::Texture)?;
+        Ok(Some(FrameMap::NormalMap(Texture::Bitmap(Arc::new(BitmapTexture {
+            mapping: TextureMapping::default(),
+            width: image.width,
+            height: image.height,
+            texels: Arc::new(image.pixels),
+            filter: BitmapFilter::Bilinear,
+            wrap: BitmapWrap::Repeat,
+        })))))
     }
 
     /// `mix`: `string materials` (two names), `float amount` (default 0.5).
@@ -390,6 +442,22 @@ pub(super) fn resolve_material(
 ) -> Result<MaterialId, SceneError> {
     match r {
         MaterialRef::Inline(desc) => Ok(intern_material(materials, ids, desc.clone())),
+        MaterialRef::Framed { inner, frame } => {
+            let material = intern_material(materials, ids, inner.clone());
+            let desc = match frame {
+                FrameMap::Displacement(displacement) => MaterialDesc::BumpMap(BumpMapMaterial {
+                    material,
+                    height: BumpHeight::Pbrt {
+                        displacement: displacement.clone(),
+                    },
+                }),
+                FrameMap::NormalMap(normal_map) => MaterialDesc::NormalMap(NormalMapMaterial {
+                    material,
+                    normal_map: normal_map.clone(),
+                }),
+            };
+            Ok(intern_material(materials, ids, desc))
+        }
         MaterialRef::Named { name, loc } => {
             let Some((target, _)) = named.get(name) else {
                 return Err(SceneError::invalid(
