@@ -332,8 +332,8 @@ fn unsupported_features_are_named() {
         "scene.pbrt:2:1: light type \"goniometric\" is not supported yet"
     );
     assert_eq!(
-        error("Camera \"orthographic\""),
-        "scene.pbrt:1:1: camera type \"orthographic\" is not supported yet"
+        error("Camera \"realistic\""),
+        "scene.pbrt:1:1: camera type \"realistic\" is not supported yet (cameras: perspective, orthographic)"
     );
     assert_eq!(
         error("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\""),

@@ -26,6 +26,7 @@ fn camera_with_filter(lens_radius: f32, filter_radius: f32) -> PerspectiveCamera
             lens_radius,
             focal_distance: 4.0,
             screen_window: None,
+            ..CameraDesc::default()
         },
         &FilmDesc { width: 48, height: 32 },
         Vec2::splat(filter_radius),

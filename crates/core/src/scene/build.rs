@@ -9,7 +9,7 @@ use super::{
     ShapeDesc,
 };
 use crate::accel::WideBvh;
-use crate::camera::{Camera, PerspectiveCamera};
+use crate::camera::Camera;
 use crate::film::Filter;
 use crate::light::{
     DiffuseAreaLight, DistantLight, ImageInfiniteLight, Light, PointLight, PowerLightSampler, SpotLight,
@@ -664,7 +664,7 @@ impl Scene {
             light_sampler: PowerLightSampler::with_selection(&lights, desc.integrator.light_selection),
             lights,
             infinite_lights,
-            camera: Camera::Perspective(PerspectiveCamera::new(&desc.camera, &desc.film, filter.radius())),
+            camera: Camera::new(&desc.camera, &desc.film, filter.radius()),
             filter,
             film: desc.film,
             reconstruction: desc.reconstruction,

@@ -3,7 +3,7 @@
 //! Everything here is already resolved: transforms are matrices, named materials are indices,
 //! meshes are in world space. No strings, files or parsing state reach the core.
 
-pub use crate::camera::CameraDesc;
+pub use crate::camera::{CameraDesc, Projection};
 use crate::color::Rgb;
 pub use crate::film::{FilmDesc, FilterDesc, Reconstruction};
 pub use crate::light::{EnvMapping, LightSelection, SpotFalloff};

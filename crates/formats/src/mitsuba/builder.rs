@@ -12,7 +12,7 @@ use mcrender_core::color::Rgb;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3};
 use mcrender_core::scene::{
     CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection, MaterialDesc,
-    MaterialId, Reconstruction, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
+    MaterialId, Projection, Reconstruction, RussianRoulette, SamplerDesc, SamplerKind, SceneDescription,
 };
 use mcrender_core::texture::FloatTexture;
 
@@ -249,8 +249,8 @@ impl Builder {
     /// `<sensor>`: perspective or thin-lens camera, with its film and sampler.
     fn sensor(&mut self, el: &Element) -> Result<(), SceneError> {
         let kind = el.required("type")?;
-        if kind != "perspective" && kind != "thinlens" {
-            return Err(Self::unsupported(el, " (cameras: perspective, thinlens)"));
+        if kind != "perspective" && kind != "thinlens" && kind != "orthographic" {
+            return Err(Self::unsupported(el, " (cameras: perspective, thinlens, orthographic)"));
         }
         let mut p = Props::new(el);
         for film in p.nested("film") {
@@ -264,6 +264,11 @@ impl Builder {
             }
         }
         let to_world = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
+        if kind == "orthographic" {
+            self.desc.camera = self.orthographic(el, &mut p, to_world)?;
+            self.finish(&p);
+            return Ok(());
+        }
         if p.has("focal_length") {
             let e = p.get("focal_length").expect("checked");
             return Err(SceneError::unsupported(
@@ -314,6 +319,7 @@ impl Builder {
             let _ = p.get(silent);
         }
         self.desc.camera = CameraDesc {
+            projection: Projection::Perspective,
             world_from_camera,
             fov_degrees: 2.0 * tan_short.atan().to_degrees(),
             lens_radius,
@@ -322,6 +328,51 @@ impl Builder {
         };
         self.finish(&p);
         Ok(())
+    }
+
+    /// The `orthographic` sensor (Mitsuba 3 `OrthographicCamera`): parallel rays along
+    /// local +z from the region `[-1, 1] x [-1/aspect, 1/aspect]` of the plane
+    /// `z = near_clip`, all in the local space that `to_world` (whose scale sizes the
+    /// region) maps to the world. Mitsuba's image x runs along local -x, so x is mirrored
+    /// as for the perspective sensor. `far_clip` is not applied (rays are unbounded).
+    fn orthographic(&mut self, el: &Element, p: &mut Props, to_world: Mat4) -> Result<CameraDesc, SceneError> {
+        let far_given = p.has("far_clip");
+        let near = p.float("near_clip", 1e-2)?;
+        let far = p.float("far_clip", 1e4)?;
+        if !(near >= 0.0 && far > near) {
+            return Err(SceneError::invalid(
+                &el.loc,
+                format!("orthographic sensor: need 0 <= near_clip < far_clip (got {near} and {far})"),
+            ));
+        }
+        if far_given {
+            self.warnings.push(format!(
+                "{}: warning: far_clip of the orthographic sensor is not applied (rays are unbounded)",
+                el.loc
+            ));
+        }
+        // The window is sized by to_world's scale; a shear would skew the parallel rays.
+        let axes = [0, 1, 2].map(|i| to_world.col(i).truncate());
+        let sheared = [(0, 1), (0, 2), (1, 2)]
+            .iter()
+            .any(|&(i, j)| axes[i].dot(axes[j]).abs() > 1e-4 * axes[i].length() * axes[j].length());
+        if sheared {
+            return Err(SceneError::invalid(
+                &el.loc,
+                "orthographic sensor: to_world must not shear (scale before rotating)",
+            ));
+        }
+        let m =
+            to_world * Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0)) * Mat4::from_translation(Vec3::new(0.0, 0.0, near));
+        let world_from_camera =
+            Transform::new(m).ok_or_else(|| SceneError::invalid(&el.loc, "the sensor's to_world is singular"))?;
+        let aspect = self.desc.film.width as f32 / self.desc.film.height as f32;
+        Ok(CameraDesc {
+            projection: Projection::Orthographic,
+            world_from_camera,
+            screen_window: Some([-1.0, 1.0, -1.0 / aspect, 1.0 / aspect]),
+            ..CameraDesc::default()
+        })
     }
 
     /// `<film>`: size and reconstruction filter.

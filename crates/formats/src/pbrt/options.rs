@@ -5,7 +5,7 @@ use glam::Vec2;
 use mcrender_core::math::Transform;
 use mcrender_core::scene::{
     BdptDesc, CameraDesc, DirectStrategy, FilmDesc, FilterDesc, IntegratorDesc, IntegratorKind, LightSelection,
-    MltDesc, RussianRoulette, SamplerDesc, SamplerKind, SppmDesc,
+    MltDesc, Projection, RussianRoulette, SamplerDesc, SamplerKind, SppmDesc,
 };
 
 use super::builder::SceneBuilder;
@@ -39,23 +39,30 @@ pub struct SceneOptions {
 }
 
 impl SceneBuilder {
-    /// `Camera "perspective" ...`: the CTM is camera-from-world.
+    /// `Camera "perspective" ...` or `Camera "orthographic" ...`: the CTM is
+    /// camera-from-world.
     pub fn camera(&mut self, kind: &str, params: &ParamSet, loc: &Location) -> Result<(), SceneError> {
         self.require_options("Camera", loc)?;
-        if kind != "perspective" {
-            let message = match kind {
-                "orthographic" | "realistic" | "spherical" => {
-                    format!("camera type \"{kind}\" is not supported yet")
-                }
-                _ => return Err(SceneError::syntax(loc, format!("unknown camera type \"{kind}\""))),
-            };
-            return Err(SceneError::unsupported(loc, message));
-        }
+        let projection = match kind {
+            "perspective" => Projection::Perspective,
+            "orthographic" => Projection::Orthographic,
+            "realistic" | "spherical" => {
+                return Err(SceneError::unsupported(
+                    loc,
+                    format!("camera type \"{kind}\" is not supported yet (cameras: perspective, orthographic)"),
+                ))
+            }
+            _ => return Err(SceneError::syntax(loc, format!("unknown camera type \"{kind}\""))),
+        };
         let camera_from_world = self.ctm_transform("the camera", loc)?;
         let world_from_camera = camera_from_world.inverse();
         self.set_camera_coordinate_system(world_from_camera.m);
 
-        let fov = params.float("fov", 90.0)?;
+        // The orthographic camera has no field of view (an unread "fov" is reported unused).
+        let fov = match projection {
+            Projection::Perspective => params.float("fov", 90.0)?,
+            Projection::Orthographic => 90.0,
+        };
         if !(fov > 0.0 && fov < 180.0) {
             return Err(param_error(params, "fov", "must be between 0 and 180 degrees"));
         }
@@ -103,6 +110,7 @@ impl SceneBuilder {
             }
         }
         self.options.camera = CameraDesc {
+            projection,
             world_from_camera: Transform {
                 m: world_from_camera.m,
                 m_inv: world_from_camera.m_inv,

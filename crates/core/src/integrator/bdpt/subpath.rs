@@ -39,6 +39,11 @@ pub fn camera_subpath(
         path,
         stats,
     );
+    // The first vertex's area density from the camera's own rule (the orthographic
+    // camera's is not the solid-angle density over r^2 that the walk applied).
+    if ctx.scene.camera.is_orthographic() && path.len() > 1 && !path[1].at_infinity {
+        path[1].pdf_fwd = path[0].pdf(ctx, None, &path[1]);
+    }
 }
 
 /// A light subpath: a light chosen by power, a ray emitted from it, then at most

@@ -266,6 +266,16 @@ impl Vertex {
             return 0.0;
         };
         let pdf = match &self.kind {
+            // The camera's density is per area at `next` (see `Camera::pdf_area_per_cos`:
+            // an orthographic camera's is not a solid-angle density over r^2).
+            VertexKind::Camera if !next.at_infinity && ctx.scene.camera.is_orthographic() => {
+                let pdf = ctx.scene.camera.pdf_area_per_cos(self.p(), next.p());
+                return if next.is_on_surface() {
+                    pdf * next.ng().dot(wn).abs()
+                } else {
+                    pdf
+                };
+            }
             VertexKind::Camera => ctx.scene.camera.pdf_we(&Ray::new(self.p(), wn)).1,
             VertexKind::Surface { bsdf, .. } => {
                 let Some(wp) = prev.and_then(|p| (p.p() - self.p()).try_normalize()) else {
