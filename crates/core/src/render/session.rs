@@ -321,13 +321,16 @@ impl<'s> RenderSession<'s> {
                     }
                     // Under filter splatting the samples go to the film's filtered sums and
                     // the accumulators stay empty: nothing to continue.
-                    let pixels = (0..tile.pixel_count() as usize)
-                        .map(|i| {
-                            let (x, y) = tile.pixel_at(i);
-                            *film.pixel(x, y)
-                        })
-                        .take(if splatting { 0 } else { usize::MAX })
-                        .collect();
+                    let pixels = if splatting {
+                        Vec::new()
+                    } else {
+                        (0..tile.pixel_count() as usize)
+                            .map(|i| {
+                                let (x, y) = tile.pixel_at(i);
+                                *film.pixel(x, y)
+                            })
+                            .collect()
+                    };
                     let r = render_tile(scene, integrator, tile, samples.clone(), pixels);
                     if k < owned {
                         observer.tile_finished(tile, &r.pixels);

@@ -236,9 +236,7 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
                         format!("expected 0 <= inner radius < radius, found {inner_radius} and {radius}"),
                     ));
                 }
-                if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
-                    return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
-                }
+                check_phi_max(&what, *phi_max)?;
                 check_finite("disk transform", &world_from_object.m.to_cols_array())?;
             }
             GeometryDesc::Cylinder {
@@ -258,9 +256,7 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
                         format!("expected finite zmin < zmax, found {z_min} and {z_max}"),
                     ));
                 }
-                if !(*phi_max > 0.0 && *phi_max <= 2.0 * std::f32::consts::PI + 1e-6) {
-                    return Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")));
-                }
+                check_phi_max(&what, *phi_max)?;
                 check_finite("cylinder transform", &world_from_object.m.to_cols_array())?;
             }
         }
@@ -522,6 +518,15 @@ fn farthest(b: &crate::math::Bounds3) -> f32 {
 fn within_scene_limit(b: &crate::math::Bounds3) -> bool {
     // Empty bounds (min above max) hold nothing and pass.
     b.min.cmpgt(b.max).any() || farthest(b) <= MAX_SCENE_COORDINATE
+}
+
+/// A partial quadric's sweep: `0 < phi_max <= 2 pi` (radians, with rounding slack).
+fn check_phi_max(what: &str, phi_max: f32) -> Result<(), BuildError> {
+    if phi_max > 0.0 && phi_max <= 2.0 * std::f32::consts::PI + 1e-6 {
+        Ok(())
+    } else {
+        Err(invalid(what, format!("expected 0 < phi_max <= 2 pi, found {phi_max}")))
+    }
 }
 
 fn check_positive_radius(r: [f32; 2]) -> Result<(), BuildError> {
