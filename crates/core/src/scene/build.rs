@@ -16,7 +16,7 @@ use crate::light::{
     UniformInfiniteLight,
 };
 use crate::material::{check_finite, check_non_negative, InvalidParameter, Material};
-use crate::math::{Vec2, Vec3};
+use crate::math::{Vec2, Vec3, Vec4};
 use crate::shape::{BilinearMesh, BilinearPatch, Cylinder, Disk, Shape, Sphere, SphereClip, Triangle, TriangleMesh};
 use crate::texture::effective_alpha;
 
@@ -175,14 +175,18 @@ fn validate_shapes(shapes: &[ShapeDesc], n_materials: usize) -> Result<(), Build
             }
         }
         match &s.geometry {
-            GeometryDesc::TriangleMesh(m) => check_mesh(
-                &format!("triangle mesh (shape {i})"),
-                3,
-                &m.positions,
-                &m.indices,
-                m.normals.as_deref(),
-                m.uvs.as_deref(),
-            )?,
+            GeometryDesc::TriangleMesh(m) => {
+                let what = format!("triangle mesh (shape {i})");
+                check_mesh(
+                    &what,
+                    3,
+                    &m.positions,
+                    &m.indices,
+                    m.normals.as_deref(),
+                    m.uvs.as_deref(),
+                )?;
+                check_tangents(&what, m.positions.len(), m.tangents.as_deref())?;
+            }
             GeometryDesc::BilinearMesh(m) => check_mesh(
                 &format!("bilinear mesh (shape {i})"),
                 4,
@@ -306,6 +310,17 @@ fn check_mesh(
     Ok(())
 }
 
+/// Tangents, if any: one per vertex, finite.
+fn check_tangents(what: &str, vertices: usize, tangents: Option<&[Vec4]>) -> Result<(), BuildError> {
+    let Some(t) = tangents else {
+        return Ok(());
+    };
+    if t.len() != vertices {
+        return Err(invalid(what, format!("{} tangents for {vertices} vertices", t.len())));
+    }
+    check_finite(what, &t.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>())
+}
+
 /// Per-vertex shading normals made unit length (zero stays zero).
 fn unit_normals(normals: Option<&[Vec3]>) -> Option<Vec<Vec3>> {
     normals.map(|n| n.iter().map(|v| v.normalize_or_zero()).collect())
@@ -320,6 +335,7 @@ fn shape_geometry(s: &ShapeDesc) -> Vec<Shape> {
                 indices: m.indices.clone(),
                 normals: unit_normals(m.normals.as_deref()),
                 uvs: m.uvs.clone(),
+                tangents: m.tangents.clone(),
                 flip_normals: s.flip_normals,
             });
             (0..mesh.triangle_count() as u32)

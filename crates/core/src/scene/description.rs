@@ -12,7 +12,7 @@ pub use crate::material::{
     DiffuseTransmissionMaterial, MaterialDesc, MaterialId, MetallicRoughnessMaterial, MixMaterial, NormalMapMaterial,
     PlasticMaterial, ThinDielectricMaterial,
 };
-use crate::math::{Transform, Vec2, Vec3};
+use crate::math::{Transform, Vec2, Vec3, Vec4};
 pub use crate::sampling::{SamplerDesc, SamplerKind};
 pub use crate::texture::{FloatTexture, RgbTexture};
 
@@ -390,6 +390,10 @@ pub struct TriangleMeshDesc {
     pub normals: Option<Vec<Vec3>>,
     /// Optional per-vertex texture coordinates.
     pub uvs: Option<Vec<Vec2>>,
+    /// Optional per-vertex shading tangents (world space `xyz`) with the handedness `w`
+    /// (+1 or -1) of the bitangent `w (n x t)`, as glTF's `TANGENT`. Without them the
+    /// tangent is dp/du from the uvs.
+    pub tangents: Option<Vec<Vec4>>,
 }
 
 /// A bilinear patch mesh in world space: each patch is

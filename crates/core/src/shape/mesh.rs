@@ -1,7 +1,7 @@
 //! Triangle and bilinear patch meshes in world space, shared by the primitives that index
 //! into them.
 
-use crate::math::{Vec2, Vec3};
+use crate::math::{Vec2, Vec3, Vec4};
 
 /// Vertex arrays of a mesh, already transformed to world space.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -14,6 +14,9 @@ pub struct TriangleMesh {
     pub normals: Option<Vec<Vec3>>,
     /// Optional texture coordinates per vertex.
     pub uvs: Option<Vec<Vec2>>,
+    /// Optional shading tangents per vertex with the bitangent's handedness in `w`
+    /// (glTF's `TANGENT`); used only with shading normals.
+    pub tangents: Option<Vec<Vec4>>,
     /// Flip the geometric normal when there are no shading normals (pbrt's
     /// `ReverseOrientation` xor "transform swaps handedness").
     pub flip_normals: bool,
