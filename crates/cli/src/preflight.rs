@@ -213,7 +213,8 @@ pub fn render_memory(desc: &SceneDescription, loaded_bytes: u64) -> u64 {
     let geometry = |shapes: &mut dyn Iterator<Item = &GeometryDesc>| {
         shapes.fold(0u64, |acc, g| {
             acc.saturating_add(match g {
-                GeometryDesc::TriangleMesh(m) => mesh_bytes(m.positions.len() as u64, m.indices.len() as u64 / 3),
+                GeometryDesc::TriangleMesh(m) => mesh_bytes(m.positions.len() as u64, m.indices.len() as u64 / 3)
+                    .saturating_add(m.tangents.as_ref().map_or(0, |t| 16 * t.len() as u64)),
                 GeometryDesc::BilinearMesh(m) => mesh_bytes(m.positions.len() as u64, m.indices.len() as u64 / 4),
                 _ => mesh_bytes(0, 1),
             })

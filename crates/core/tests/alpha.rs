@@ -43,6 +43,7 @@ fn sheet(c: Vec3, n: Vec3, s: f32, alpha: Option<FloatTexture>) -> ShapeDesc {
                 Vec2::new(1.0, 1.0),
                 Vec2::new(0.0, 1.0),
             ]),
+            tangents: None,
         }),
         material: 0,
         area_light: None,

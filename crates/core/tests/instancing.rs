@@ -28,6 +28,7 @@ fn object_shapes() -> Vec<ShapeDesc> {
                 indices,
                 normals: None,
                 uvs: None,
+                tangents: None,
             }),
             material: 1,
             area_light: None,
@@ -89,6 +90,7 @@ fn base_scene() -> SceneDescription {
             },
             normals: None,
             uvs: None,
+            tangents: None,
         })
     };
     d.shapes.push(ShapeDesc {

@@ -58,6 +58,7 @@ fn quad(p: [Vec3; 4], material: u32) -> ShapeDesc {
                 Vec2::new(1.0, 1.0),
                 Vec2::new(0.0, 1.0),
             ]),
+            tangents: None,
         }),
         material,
         area_light: None,

@@ -127,6 +127,7 @@ fn uniform_sky_gives_radiance_rho_l() {
             indices: vec![0, 2, 1, 0, 3, 2],
             normals: None,
             uvs: None,
+            tangents: None,
         }),
         material: 1,
         area_light: None,

@@ -157,6 +157,7 @@ fn two_receivers() -> SceneDescription {
                 indices: vec![0, 2, 1, 0, 3, 2],
                 normals: None,
                 uvs: None,
+                tangents: None,
             }),
             material: (d.materials.len() - 1) as u32,
             area_light: None,

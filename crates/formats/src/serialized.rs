@@ -210,6 +210,7 @@ pub fn read_serialized(bytes: &[u8], shape_index: u32, max_bytes: u64) -> Result
             indices,
             normals: if flags & FACE_NORMALS != 0 { None } else { normals },
             uvs,
+            tangents: None,
         },
         name: String::from_utf8_lossy(&name).into_owned(),
     })
@@ -273,6 +274,7 @@ mod tests {
             indices: vec![0, 1, 2, 0, 2, 3],
             normals: Some(vec![Vec3::Z; 4]),
             uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]),
+            tangents: None,
         }
     }
 

@@ -413,6 +413,80 @@ fn embedded_data_uri_buffers_and_glb_load_the_same_triangle() {
     assert_eq!(mesh(&s, 0), mesh(&reference, 0));
 }
 
+/// The triangle with a `TANGENT` accessor (`count` of them, each `t`) after its data, in
+/// `tri-t.bin`.
+fn with_tangents(dir: &Path, t: [f32; 4], count: usize) -> PathBuf {
+    let mut doc = triangle_doc(Some("tri-t.bin"));
+    let mut bin = triangle_bin();
+    let offset = bin.len();
+    for _ in 0..count {
+        bin.extend(t.iter().flat_map(|x| x.to_le_bytes()));
+    }
+    std::fs::write(dir.join("tri-t.bin"), &bin).unwrap();
+    doc["buffers"][0]["byteLength"] = json!(bin.len());
+    doc["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 16 * count}));
+    doc["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"bufferView": 4, "componentType": 5126, "count": count, "type": "VEC4"}));
+    doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = json!(4);
+    let path = dir.join("scene.gltf");
+    std::fs::write(&path, serde_json::to_vec_pretty(&doc).unwrap()).unwrap();
+    path
+}
+
+#[test]
+fn tangents_are_read_moved_to_world_and_mirrored_with_the_node() {
+    let dir = tempfile::tempdir().unwrap();
+    // Not along dp/du (+x here), bitangent mirrored.
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let path = with_tangents(dir.path(), [h, h, 0.0, -1.0], 3);
+    let s = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let t = mesh(&s, 0).tangents.as_ref().expect("tangents read");
+    assert_eq!(t.len(), 3);
+    assert!(close(t[0].truncate(), Vec3::new(h, h, 0.0)) && t[0].w == -1.0, "{t:?}");
+    assert!(!s.warnings.iter().any(|w| w.contains("TANGENT")), "{:?}", s.warnings);
+    s.description.validate().unwrap();
+
+    // A mirroring node moves the tangent as a vector and turns the handedness around.
+    let mut doc: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    doc["nodes"][0]["scale"] = json!([-1, 1, 1]);
+    std::fs::write(&path, serde_json::to_vec_pretty(&doc).unwrap()).unwrap();
+    let s = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let t = mesh(&s, 0).tangents.as_ref().expect("tangents read");
+    assert!(close(t[1].truncate(), Vec3::new(-h, h, 0.0)) && t[1].w == 1.0, "{t:?}");
+
+    // Without normals, tangents are ignored (the spec).
+    doc["nodes"][0]["scale"] = json!([1, 1, 1]);
+    doc["meshes"][0]["primitives"][0]["attributes"]
+        .as_object_mut()
+        .unwrap()
+        .remove("NORMAL");
+    std::fs::write(&path, serde_json::to_vec_pretty(&doc).unwrap()).unwrap();
+    let s = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(mesh(&s, 0).tangents, None);
+}
+
+#[test]
+fn a_tangent_count_other_than_the_vertex_count_is_an_error_naming_the_accessor() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = load(&with_tangents(dir.path(), [1.0, 0.0, 0.0, 1.0], 2))
+        .expect_err("two tangents for three vertices")
+        .to_string();
+    assert!(
+        e.contains("scene.gltf")
+            && e.contains("meshes[0].primitives[0].attributes.TANGENT: 2 tangents for 3 positions"),
+        "{e}"
+    );
+    let e = load(&with_tangents(dir.path(), [f32::NAN, 0.0, 0.0, 1.0], 3))
+        .expect_err("a NaN tangent")
+        .to_string();
+    assert!(e.contains("attributes.TANGENT: non-finite tangent"), "{e}");
+}
+
 #[test]
 fn malformed_files_name_the_file_and_the_json_path() {
     // Bad JSON: file:line:col.

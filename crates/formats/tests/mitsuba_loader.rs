@@ -421,6 +421,7 @@ fn serialized_meshes_load_by_shape_index_and_bad_ones_are_errors() {
         indices: vec![0, 1, 2],
         normals: None,
         uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]),
+        tangents: None,
     };
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(

@@ -48,7 +48,10 @@ impl NormalMapMaterial {
     pub fn apply(&self, si: &mut SurfaceInteraction) {
         let c = self.normal_map.evaluate(&TextureContext::at_point(si));
         let frame = Frame::from_zx(si.ns, si.dpdu);
-        let Some(mut n_local) = Vec3::new(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0).try_normalize() else {
+        // The green channel runs along the bitangent `bitangent_sign * (ns x dpdu)`; the
+        // frame's y is `ns x dpdu`.
+        let green = si.bitangent_sign * (2.0 * c.g - 1.0);
+        let Some(mut n_local) = Vec3::new(2.0 * c.r - 1.0, green, 2.0 * c.b - 1.0).try_normalize() else {
             return;
         };
         if self.style == MapStyle::Mitsuba && frame.from_local(n_local).dot(si.wo) < 0.0 {
@@ -151,6 +154,31 @@ mod tests {
             map(MapStyle::Pbrt).apply(&mut si);
             assert!((si.ns - Vec3::new(h, 0.0, h)).length() < 1e-5, "{wo}: {}", si.ns);
             assert_eq!(si.unmapped_ns, None);
+        }
+    }
+
+    /// The green channel runs along the bitangent, `bitangent_sign * (ns x dpdu)`: a map
+    /// tilted towards +green tilts the normal to +y, or to -y where the mesh's tangents
+    /// say the bitangent is mirrored (glTF's `TANGENT.w = -1`).
+    #[test]
+    fn the_green_channel_follows_the_bitangent_sign() {
+        let c = 0.5 + 0.5 * std::f32::consts::FRAC_1_SQRT_2;
+        let map = NormalMapMaterial {
+            material: 0,
+            normal_map: Rgb::new(0.5, c, c).into(),
+            style: MapStyle::Pbrt,
+        };
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        for sign in [1.0, -1.0] {
+            let mut si = hit();
+            si.bitangent_sign = sign;
+            map.apply(&mut si);
+            assert!(
+                (si.ns - Vec3::new(0.0, sign * h, h)).length() < 1e-5,
+                "{sign}: {}",
+                si.ns
+            );
+            assert!((si.dpdu - Vec3::X).length() < 1e-5, "{sign}: {}", si.dpdu);
         }
     }
 }

@@ -23,6 +23,7 @@ pub fn hit() -> SurfaceInteraction {
         t: 1.0,
         mesh: crate::shape::MeshPoint::default(),
         unmapped_ns: None,
+        bitangent_sign: 1.0,
     }
 }
 

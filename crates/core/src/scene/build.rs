@@ -318,7 +318,8 @@ fn check_tangents(what: &str, vertices: usize, tangents: Option<&[Vec4]>) -> Res
     if t.len() != vertices {
         return Err(invalid(what, format!("{} tangents for {vertices} vertices", t.len())));
     }
-    check_finite(what, &t.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>())
+    check_finite(what, &t.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>())?;
+    Ok(())
 }
 
 /// Per-vertex shading normals made unit length (zero stays zero).

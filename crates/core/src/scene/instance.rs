@@ -126,6 +126,9 @@ impl Instance {
             t: si.t,
             mesh: si.mesh,
             unmapped_ns: None,
+            // Carried as it is, as pbrt-v4 carries dpdu: under a mirroring instance the
+            // normal map's y follows the world-space ns x dpdu.
+            bitangent_sign: si.bitangent_sign,
         }
     }
 }

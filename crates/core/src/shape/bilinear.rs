@@ -294,6 +294,7 @@ impl BilinearPatch {
             t,
             mesh: crate::shape::MeshPoint::default(),
             unmapped_ns: None,
+            bitangent_sign: 1.0,
         }
     }
 

@@ -198,6 +198,7 @@ impl Cylinder {
             t,
             mesh: crate::shape::MeshPoint::default(),
             unmapped_ns: None,
+            bitangent_sign: 1.0,
         }
     }
 

@@ -146,6 +146,7 @@ impl Disk {
             t,
             mesh: crate::shape::MeshPoint::default(),
             unmapped_ns: None,
+            bitangent_sign: 1.0,
         }
     }
 

@@ -88,6 +88,10 @@ pub struct SurfaceInteraction {
     /// to `ns`. Its divergence from `ns` shadows the light side of the BSDF (Mitsuba's
     /// bump-terminator term, `crate::bsdf::BumpShadowing`); `None` otherwise.
     pub unmapped_ns: Option<Vec3>,
+    /// Handedness of the shading frame's bitangent: it is `bitangent_sign * (ns x dpdu)`
+    /// (glTF's `TANGENT.w`). Normal maps read their green channel along it. 1 unless a
+    /// mesh gives tangents.
+    pub bitangent_sign: f32,
 }
 
 impl SurfaceInteraction {

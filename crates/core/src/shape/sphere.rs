@@ -227,6 +227,7 @@ impl Sphere {
             t,
             mesh: crate::shape::MeshPoint::default(),
             unmapped_ns: None,
+            bitangent_sign: 1.0,
         }
     }
 

@@ -208,7 +208,9 @@ impl Triangle {
         } else {
             (Vec3::ZERO, Vec3::ZERO)
         };
-        let dpdu = Frame::from_zx(ns, dp_du).x;
+        let (dpdu, bitangent_sign) = self
+            .shading_tangent(b, ns)
+            .unwrap_or((Frame::from_zx(ns, dp_du).x, 1.0));
         // Degenerate uvs: any tangents, as pbrt-v4's CoordinateSystem(n).
         let (dp_du, dp_dv) = if dp_du.cross(dp_dv).length_squared() == 0.0 {
             let f = Frame::from_z(n);
@@ -230,7 +232,19 @@ impl Triangle {
                 b,
             },
             unmapped_ns: None,
+            bitangent_sign,
         }
+    }
+
+    /// The mesh's own tangent at barycentrics `b` (glTF's `TANGENT`), made orthogonal to
+    /// `ns`, with the sign of its interpolated handedness; `None` without tangents and
+    /// shading normals, or where the interpolated tangent is parallel to `ns`.
+    fn shading_tangent(&self, b: [f32; 3], ns: Vec3) -> Option<(Vec3, f32)> {
+        let (tangents, _) = self.mesh.tangents.as_ref().zip(self.mesh.normals.as_ref())?;
+        let [i0, i1, i2] = self.mesh.vertices(self.index);
+        let t = b[0] * tangents[i0] + b[1] * tangents[i1] + b[2] * tangents[i2];
+        let x = (t.truncate() - ns * ns.dot(t.truncate())).try_normalize()?;
+        Some((x, if t.w < 0.0 { -1.0 } else { 1.0 }))
     }
 
     /// The interaction for a hit from [`Self::intersect`].
@@ -254,5 +268,70 @@ impl Triangle {
     #[must_use]
     pub fn pdf_area(&self, _intr: &Interaction) -> f32 {
         1.0 / self.area()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec4;
+
+    /// The triangle (0,0,0), (1,0,0), (0,1,0) with normals +z and uvs along x and y, so
+    /// that dp/du is +x; `tangents` per vertex if given.
+    fn triangle(tangents: Option<Vec<Vec4>>) -> Triangle {
+        let mesh = TriangleMesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![0, 1, 2],
+            normals: Some(vec![Vec3::Z; 3]),
+            uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]),
+            tangents,
+            flip_normals: false,
+        };
+        Triangle::new(Arc::new(mesh), 0)
+    }
+
+    fn hit_at(t: &Triangle, x: f32, y: f32) -> SurfaceInteraction {
+        let ray = Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z);
+        let hit = t.intersect(&ray, f32::INFINITY).expect("the ray hits");
+        t.interaction(&ray, &hit)
+    }
+
+    #[test]
+    fn without_tangents_the_shading_tangent_is_dp_du() {
+        let si = hit_at(&triangle(None), 0.2, 0.3);
+        assert!((si.dpdu - Vec3::X).length() < 1e-6, "{}", si.dpdu);
+        assert_eq!(si.bitangent_sign, 1.0);
+    }
+
+    #[test]
+    fn given_tangents_are_interpolated_made_orthogonal_to_the_normal_and_keep_their_sign() {
+        // Tangents along y with some z (removed against the normal), mirrored bitangent;
+        // a vertex's tangent that differs shows the interpolation.
+        let t = vec![
+            Vec4::new(0.0, 1.0, 0.5, -1.0),
+            Vec4::new(0.0, 1.0, 0.5, -1.0),
+            Vec4::new(1.0, 1.0, 0.0, -1.0),
+        ];
+        // At (x, y) the weights are (1 - x - y, x, y): the tangent is (y, 1, (1 - y) / 2).
+        for (x, y) in [(0.3, 0.1), (0.1, 0.5)] {
+            let si = hit_at(&triangle(Some(t.clone())), x, y);
+            let expected = Vec3::new(y, 1.0, 0.0).normalize();
+            assert!((si.dpdu - expected).length() < 1e-5, "{} at ({x}, {y})", si.dpdu);
+            assert!(si.dpdu.dot(si.ns).abs() < 1e-6);
+            assert_eq!(si.bitangent_sign, -1.0);
+        }
+    }
+
+    #[test]
+    fn tangents_along_the_normal_or_without_normals_fall_back_to_dp_du() {
+        let along_n = vec![Vec4::new(0.0, 0.0, 1.0, -1.0); 3];
+        let si = hit_at(&triangle(Some(along_n)), 0.2, 0.3);
+        assert!((si.dpdu - Vec3::X).length() < 1e-6, "{}", si.dpdu);
+        assert_eq!(si.bitangent_sign, 1.0);
+        let mut t = triangle(Some(vec![Vec4::new(0.0, 1.0, 0.0, -1.0); 3]));
+        Arc::get_mut(&mut t.mesh).unwrap().normals = None;
+        let si = hit_at(&t, 0.2, 0.3);
+        assert!((si.dpdu - Vec3::X).length() < 1e-6, "{}", si.dpdu);
+        assert_eq!(si.bitangent_sign, 1.0);
     }
 }

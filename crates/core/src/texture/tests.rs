@@ -294,6 +294,7 @@ fn plane_hit(d: f32, scale: f32) -> SurfaceInteraction {
         t: d,
         mesh: crate::shape::MeshPoint::default(),
         unmapped_ns: None,
+        bitangent_sign: 1.0,
     }
 }
 
@@ -387,6 +388,7 @@ fn dp_du_and_dp_dv_match_the_uv_parameterisation() {
         normals: None,
         uvs: Some(vec![Vec2::new(0.1, 0.2), Vec2::new(0.9, 0.3), Vec2::new(0.2, 0.8)]),
         flip_normals: false,
+        tangents: None,
     });
     let tri = Shape::Triangle(Triangle::new(mesh, 0));
     check_uv_derivatives(&tri, Vec3::new(0.5, 0.5, 5.0), Vec3::new(0.8, 1.0, 0.33));

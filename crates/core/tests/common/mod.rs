@@ -72,6 +72,7 @@ pub fn add_receiver(d: &mut SceneDescription, albedo: f32) {
             indices: vec![0, 2, 1, 0, 3, 2],
             normals: None,
             uvs: None,
+            tangents: None,
         }),
         material: (d.materials.len() - 1) as u32,
         area_light: None,
@@ -92,6 +93,7 @@ pub fn add_square_light(d: &mut SceneDescription, s: f32, h: f32, l: Rgb) {
         indices: vec![0, 1, 2, 0, 2, 3],
         normals: None,
         uvs: None,
+        tangents: None,
     });
     add_emitter(d, square, l);
 }

@@ -6,10 +6,10 @@
 //! with `KHR_materials_ior` as a dielectric of that index and roughness. Textures are
 //! bilinear, wrapped as the sampler's `wrapS`, and honour `KHR_texture_transform` without
 //! rotation. A `normalTexture` (times its `scale` in x and y) wraps the material in a
-//! [`MaterialDesc::NormalMap`] whose tangent frame is the one glTF's sample viewer builds
-//! when a mesh has no `TANGENT`s: the shading tangent is dp/du from `TEXCOORD_0`, made
-//! orthogonal to the shading normal, and the bitangent is `normal x tangent`; `TANGENT`
-//! attributes are not read (a warning says so where a normal map would use them).
+//! [`MaterialDesc::NormalMap`]. Its tangent frame is the mesh's: with `TANGENT`s (and
+//! normals), the interpolated tangent made orthogonal to the shading normal and the
+//! bitangent `w (normal x tangent)`; without them, the frame glTF's sample viewer builds,
+//! the tangent dp/du from `TEXCOORD_0` and the bitangent `normal x tangent`.
 //! `alphaMode` `MASK` cuts out where the base colour's alpha (factor times texture,
 //! interpolated) is below `alphaCutoff`; `BLEND` becomes stochastic coverage, the surface
 //! present with probability alpha (pbrt's alpha, `scene::alpha`). Ignored, with a
@@ -37,8 +37,6 @@ pub struct Converted {
     pub material: MaterialId,
     /// Emission, when the material is emissive.
     pub area_light: Option<AreaLightDesc>,
-    /// The material has a normal map, whose tangent frame comes from the uvs.
-    pub normal_mapped: bool,
     /// The alpha test of the shapes that use it (`alphaMode` `MASK` or `BLEND`).
     pub alpha: Option<FloatTexture>,
 }
@@ -173,7 +171,6 @@ impl<'a> Materials<'a> {
         } = self.convert(m, &path, warnings)?;
         materials.push(desc);
         let normal_map = self.normal_map(m, &path, warnings)?;
-        let normal_mapped = normal_map.is_some();
         if let Some(normal_map) = normal_map {
             let material = (materials.len() - 1) as MaterialId;
             materials.push(MaterialDesc::NormalMap(NormalMapMaterial {
@@ -185,7 +182,6 @@ impl<'a> Materials<'a> {
         let c = Converted {
             material: (materials.len() - 1) as MaterialId,
             area_light,
-            normal_mapped,
             alpha,
         };
         self.done.insert(m.index(), c.clone());

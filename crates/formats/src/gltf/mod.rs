@@ -2,8 +2,9 @@
 //! parsed and validated by the `gltf` crate.
 //!
 //! Read: the default scene (else the first) and its node hierarchy with each node's
-//! matrix or TRS transform; meshes (triangle primitives, indexed or not, with `NORMAL`
-//! and `TEXCOORD_0`), moved to world space; the first perspective camera met in the
+//! matrix or TRS transform; meshes (triangle primitives, indexed or not, with `NORMAL`,
+//! `TEXCOORD_0` and `TANGENT`, the last used only with normals as the spec says), moved
+//! to world space; the first perspective camera met in the
 //! hierarchy (else the default framing of [`crate::framing`]); `KHR_lights_punctual`
 //! (see `lights`); materials (see `materials`). A scene without emitters gets a uniform
 //! environment light. Unsupported extensions are warnings naming them; malformed input
@@ -22,7 +23,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use gltf::mesh::{Mode, Semantic};
-use mcrender_core::math::{Mat3, Mat4, Transform, Vec2, Vec3};
+use mcrender_core::math::{Mat3, Mat4, Transform, Vec2, Vec3, Vec4};
 use mcrender_core::scene::{CameraDesc, FilmDesc, GeometryDesc, SceneDescription, ShapeDesc, TriangleMeshDesc};
 
 use crate::error::{io_error_text, Location, SceneError};
@@ -338,22 +339,21 @@ impl Walk<'_> {
                 }
                 None => None,
             };
+            // The spec: without normals, tangents are ignored.
+            let tangents = match prim.get(&Semantic::Tangents).filter(|_| normals.is_some()) {
+                Some(a) => Some(tangents(self.buffers, &a, m, n, &format!("{path}.attributes.TANGENT"))?),
+                None => None,
+            };
             let c = self
                 .materials
                 .get(&prim.material(), &mut self.desc.materials, &mut self.warnings)?;
-            if c.normal_mapped && prim.get(&Semantic::Tangents).is_some() {
-                self.warnings.push(format!(
-                    "{path}.attributes.TANGENT is not read: the normal map's tangent is dp/du from TEXCOORD_0 \
-                     (as glTF's sample viewer without tangents), which differs where the file's tangents are \
-                     mirrored (w = -1) or not along u"
-                ));
-            }
             self.desc.shapes.push(ShapeDesc {
                 geometry: GeometryDesc::TriangleMesh(TriangleMeshDesc {
                     positions,
                     indices,
                     normals,
                     uvs,
+                    tangents,
                 }),
                 material: c.material,
                 area_light: c.area_light,
@@ -363,4 +363,28 @@ impl Walk<'_> {
         }
         Ok(())
     }
+}
+
+/// A primitive's `TANGENT`s (`xyz` the tangent, `w` = +-1 the handedness of the bitangent
+/// `w (normal x tangent)`) in world space: `xyz` moves as a surface vector, and a mirroring
+/// `m` turns the handedness around (the cross product of mirrored vectors changes sign).
+fn tangents(buffers: &Buffers, a: &gltf::Accessor<'_>, m: Mat4, n: usize, path: &str) -> Result<Vec<Vec4>, String> {
+    let v = data::read(buffers, a, 4, path)?;
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("{path}: non-finite tangent"));
+    }
+    let linear = Mat3::from_mat4(m);
+    let handedness = linear.determinant().signum();
+    let t: Vec<Vec4> = v
+        .chunks_exact(4)
+        .map(|c| {
+            let xyz = (linear * Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)).normalize_or_zero();
+            let w = if c[3] < 0.0 { -handedness } else { handedness };
+            xyz.extend(w)
+        })
+        .collect();
+    if t.len() != n {
+        return Err(format!("{path}: {} tangents for {n} positions", t.len()));
+    }
+    Ok(t)
 }

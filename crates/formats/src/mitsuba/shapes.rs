@@ -153,6 +153,7 @@ impl Builder {
                         indices: ply.indices,
                         normals: ply.normals,
                         uvs: ply.uvs,
+                        tangents: None,
                     };
                     flip_uv_v(&mut m);
                     m
@@ -326,6 +327,7 @@ fn rectangle() -> TriangleMeshDesc {
         indices: vec![0, 1, 2, 0, 2, 3],
         normals: Some(vec![Vec3::Z; 4]),
         uvs: Some(uvs),
+        tangents: None,
     }
 }
 

@@ -423,6 +423,7 @@ fn to_world(
         indices: m.indices,
         normals: m.normals,
         uvs: m.uvs,
+        tangents: None,
     }))
 }
 
