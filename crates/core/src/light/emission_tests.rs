@@ -186,12 +186,18 @@ fn env_light() -> Light {
     ))
 }
 
-/// Power estimated from `n` emission samples, with its standard error, and the worst
-/// relative disagreement between a sample's pdfs and `pdf_le` at the sample.
-fn estimate_power(light: &Light, n: u32, seed: u64) -> (f64, f64, f32) {
+/// Relative disagreement between a sample's pdfs and `pdf_le` above which the sample counts
+/// as disagreeing.
+const PDF_DISAGREEMENT: f32 = 2e-3;
+
+/// Power estimated from `n` emission samples, with its standard error, and how many samples'
+/// pdfs disagree with `pdf_le` at the sample by more than [`PDF_DISAGREEMENT`]. A few may,
+/// through rounding on a texel's edge (a sample at the border of two pixels of an
+/// environment map); a wrong `pdf_le` disagrees on a large share.
+fn estimate_power(light: &Light, n: u32, seed: u64) -> (f64, f64, u32) {
     let mut rng = Pcg32::new(seed, 7);
     let (mut sum, mut sum2) = (0.0f64, 0.0f64);
-    let mut worst = 0.0f32;
+    let mut disagreeing = 0u32;
     for _ in 0..n {
         let u_pos = Vec2::new(rng.next_f32(), rng.next_f32());
         let u_dir = Vec2::new(rng.next_f32(), rng.next_f32());
@@ -211,13 +217,15 @@ fn estimate_power(light: &Light, n: u32, seed: u64) -> (f64, f64, f32) {
         let rel = |a: f32, b: f32| if b == 0.0 { 0.0 } else { (a - b).abs() / b };
         let delta_pos = matches!(light, Light::Point(_) | Light::Spot(_));
         let delta_dir = matches!(light, Light::Distant(_));
-        worst = worst
-            .max(if delta_pos { 0.0 } else { rel(pp, s.pdf_pos) })
-            .max(if delta_dir { 0.0 } else { rel(pd, s.pdf_dir) });
+        let worst = f32::max(
+            if delta_pos { 0.0 } else { rel(pp, s.pdf_pos) },
+            if delta_dir { 0.0 } else { rel(pd, s.pdf_dir) },
+        );
+        disagreeing += u32::from(worst.is_nan() || worst > PDF_DISAGREEMENT);
     }
     let mean = sum / f64::from(n);
     let var = (sum2 / f64::from(n) - mean * mean).max(0.0);
-    (mean, (var / f64::from(n)).sqrt(), worst)
+    (mean, (var / f64::from(n)).sqrt(), disagreeing)
 }
 
 /// `E[Le |cos| / (pdf_pos pdf_dir)]` is the light's power (pi A L for an area light, twice
@@ -226,14 +234,18 @@ fn estimate_power(light: &Light, n: u32, seed: u64) -> (f64, f64, f32) {
 #[test]
 fn emitted_power_estimated_by_sampling_is_the_analytic_power() {
     for (i, (light, label, fraction)) in all_lights().iter().enumerate() {
-        let (mean, se, worst) = estimate_power(light, 200_000, suite_seed() + i as u64);
+        let n = 200_000;
+        let (mean, se, disagreeing) = estimate_power(light, n, suite_seed() + i as u64);
         let expected = f64::from(light.power().average() * fraction);
         let tol = 4.0 * se + 1e-4 * expected;
         assert!(
             (mean - expected).abs() <= tol,
             "{label}: estimated power {mean} +- {se}, analytic {expected}"
         );
-        assert!(worst < 2e-3, "{label}: sample pdfs disagree with pdf_le by {worst}");
+        assert!(
+            disagreeing <= n / 10_000,
+            "{label}: {disagreeing} of {n} samples' pdfs disagree with pdf_le by more than {PDF_DISAGREEMENT}"
+        );
     }
 }
 

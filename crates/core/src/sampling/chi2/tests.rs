@@ -110,6 +110,15 @@ fn failed_samples_must_match_the_missing_pdf_mass() {
         report.error.as_deref().unwrap_or("").contains("failed samples"),
         "{report}"
     );
+    // One failure in N, as rounding on the domain's edge gives: accepted.
+    let mut draws = 0;
+    let once = |u: Vec2, _: &mut Pcg32| {
+        draws += 1;
+        (draws != N / 2).then(|| sample_cosine_hemisphere(u))
+    };
+    let report = Chi2Test::new(N, 3).sphere(SphereGrid::default(), once, cosine_pdf);
+    assert_eq!(report.failed_samples, 1);
+    report.assert_passes(SIGNIFICANCE);
 }
 
 #[test]
