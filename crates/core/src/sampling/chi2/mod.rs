@@ -43,7 +43,7 @@ pub const SIGNIFICANCE: f32 = 0.01;
 /// Failures a correct sampler may show through rounding, as a fraction of the samples:
 /// a sample landing exactly on the domain's edge, say one in 500,000. More failures than
 /// this against a pdf integrating to 1 are a defect.
-pub const ROUNDING_FAILURE_RATE: f64 = 1e-5;
+const ROUNDING_FAILURE_RATE: f64 = 1e-5;
 
 /// The seed our test suites use unless [`SEED_VARIABLE`] overrides it.
 pub const DEFAULT_SEED: u64 = 0;
@@ -247,8 +247,7 @@ impl Chi2Test {
                     Tally::Invalid(format!("point {p} is outside the grid [{}, {}]", grid.min, grid.max))
                 }
                 Some(p) => {
-                    let t = |v: f32, min: f32, extent: f32| (f64::from(v) - f64::from(min)) / f64::from(extent);
-                    let (tx, ty) = (t(p.x, grid.min.x, extent.x), t(p.y, grid.min.y, extent.y));
+                    let (tx, ty) = (fraction(p.x, grid.min.x, extent.x), fraction(p.y, grid.min.y, extent.y));
                     Tally::Cell(bin(ty, rows) * cols + bin(tx, cols))
                 }
             }
@@ -298,7 +297,7 @@ impl Chi2Test {
                 Some(x) if !x.is_finite() || x < grid.min - slack || x > grid.max + slack => {
                     Tally::Invalid(format!("value {x} is outside the grid [{}, {}]", grid.min, grid.max))
                 }
-                Some(x) => Tally::Cell(bin((f64::from(x) - f64::from(grid.min)) / f64::from(extent), cols)),
+                Some(x) => Tally::Cell(bin(fraction(x, grid.min, extent), cols)),
             }
         });
         let integrand = |x: f64| f64::from(pdf(x as f32));
@@ -439,6 +438,12 @@ struct Counts {
 #[inline]
 fn bin(t: f64, n: usize) -> usize {
     ((t * n as f64).max(0.0) as usize).min(n - 1)
+}
+
+/// How far `v` lies along `[min, min + extent]`, as a fraction, in `f64` (for [`bin`]).
+#[inline]
+fn fraction(v: f32, min: f32, extent: f32) -> f64 {
+    (f64::from(v) - f64::from(min)) / f64::from(extent)
 }
 
 /// The `i`-th of `n + 1` equally spaced points from `a` to `b`.
