@@ -16,7 +16,7 @@ use crate::light::Light;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::{RussianRoulette, Scene};
-use crate::shape::Interaction;
+use crate::shape::{Interaction, SurfaceInteraction};
 
 /// Path tracer settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,11 +43,13 @@ impl PathIntegrator {
         // Product of eta^2 over the transmissions so far: undoes the 1/eta^2 radiance
         // scaling in beta for Russian roulette, which should not kill paths inside glass.
         let mut eta_scale = 1.0f32;
+        // The current vertex, rewritten in place by every hit.
+        let mut si = SurfaceInteraction::default();
 
         loop {
             // Intersect the ray with the scene.
             stats.rays += 1;
-            let Some(hit) = scene.intersect(&ray) else {
+            let Some(prim) = scene.intersect_into(&ray, &mut si) else {
                 // The ray left the scene: add the infinite lights' emission, in full at the
                 // camera and after specular bounces, otherwise as the direct-lighting strategy
                 // weights it.
@@ -66,8 +68,7 @@ impl PathIntegrator {
                 }
                 break;
             };
-            let si = hit.si;
-            let prim = hit.primitive;
+            let si = &si;
 
             // Add emission: in full at the camera and after specular bounces, otherwise as the
             // direct-lighting strategy weights it.
@@ -87,7 +88,7 @@ impl PathIntegrator {
 
             // Get the BSDF; pass through surfaces without one (`interface`) without counting
             // a bounce; stop at the depth limit.
-            let Some(bsdf) = scene.bsdf(prim.material, &si) else {
+            let Some(bsdf) = scene.bsdf(prim.material, si) else {
                 ray = si.spawn_ray(ray.d);
                 continue;
             };
@@ -99,7 +100,7 @@ impl PathIntegrator {
             // Estimate direct lighting.
             let non_specular = bsdf.flags().is_non_specular();
             if non_specular {
-                l += beta * self.direct.estimate(scene, &si, &bsdf, sampler, stats);
+                l += beta * self.direct.estimate(scene, si, &bsdf, sampler, stats);
             }
             // A continuation that ends at the depth limit only matters for the emission it
             // may find: none counts after a non-specular event when the direct strategy

@@ -101,6 +101,16 @@ impl Scene {
     /// Closest hit along `ray` (for `t` in `(0, inf)`).
     #[must_use]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit<'_>> {
+        let mut si = SurfaceInteraction::default();
+        let primitive = self.intersect_into(ray, &mut si)?;
+        Some(Hit { si, primitive })
+    }
+
+    /// [`Self::intersect`] writing the interaction into `si` (left as it was when nothing
+    /// is hit) and returning the primitive hit. For loops that trace ray after ray: the
+    /// interaction (about 150 bytes) is built where it stays instead of being moved out
+    /// through return values, which cost 4% of a Cornell box render in `memcpy`.
+    pub fn intersect_into<'a>(&'a self, ray: &Ray, si: &mut SurfaceInteraction) -> Option<&'a Primitive> {
         let n = self.primitives.len() as u32;
         let (index, (shape_hit, prim)) = self.bvh.closest_hit_triangles(
             ray,
@@ -116,22 +126,19 @@ impl Scene {
             },
             |_, h| (ShapeHit { t: h.t, data: h.b }, 0),
         )?;
-        let mut hit = if index < n {
+        let primitive = if index < n {
             let primitive = &self.primitives[index as usize];
-            let si = primitive.shape.interaction(ray, &shape_hit);
-            Hit { si, primitive }
+            primitive.shape.interaction_into(ray, &shape_hit, si);
+            primitive
         } else {
             let inst = &self.instances[(index - n) as usize];
-            let si = inst.interaction(ray, prim, &shape_hit);
-            Hit {
-                si,
-                primitive: &inst.object.primitives[prim as usize],
-            }
+            *si = inst.interaction(ray, prim, &shape_hit);
+            &inst.object.primitives[prim as usize]
         };
         if self.has_normal_maps {
             // Normal and bump maps move the shading frame where the ray lands (bounded:
             // the description has no cycles).
-            let mut m = hit.primitive.material;
+            let mut m = primitive.material;
             for _ in 0..self.materials.len() {
                 let Some(mat) = self.materials.get(m as usize) else {
                     break;
@@ -139,14 +146,14 @@ impl Scene {
                 if mat.frame_inner().is_none() {
                     break;
                 }
-                let ctx = self.texture_context(mat, &hit.si);
-                match mat.apply_frame(&mut hit.si, &ctx) {
+                let ctx = self.texture_context(mat, si);
+                match mat.apply_frame(si, &ctx) {
                     Some(inner) => m = inner,
                     None => break,
                 }
             }
         }
-        Some(hit)
+        Some(primitive)
     }
 
     /// True when nothing blocks `ray` within `(0, t_max)`; `interface` surfaces and

@@ -4,7 +4,7 @@
 use crate::math::{offset_ray_origin, Ray, Vec2, Vec3, SHADOW_EPSILON};
 
 /// A point on a surface with its geometric normal and the bound of its rounding error.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Interaction {
     /// The point.
     pub p: Vec3,
@@ -60,8 +60,9 @@ pub struct MeshPoint {
     pub b: [f32; 3],
 }
 
-/// Everything the integrator needs at a ray hit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Everything the integrator needs at a ray hit. The default (all zero) is only a place
+/// for [`crate::scene::Scene::intersect_into`] to write into.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceInteraction {
     /// Point, error bound and geometric normal. The normal's orientation follows the
     /// shape's convention (pbrt's): it decides on which side one-sided lights emit.

@@ -89,6 +89,15 @@ impl Shape {
         dispatch!(self, s => s.interaction(ray, hit))
     }
 
+    /// [`Self::interaction`] written into `si`; in place for triangles (the common case in
+    /// a render's inner loop), where a returned interaction would be copied.
+    pub fn interaction_into(&self, ray: &Ray, hit: &ShapeHit, si: &mut SurfaceInteraction) {
+        match self {
+            Self::Triangle(t) => t.interaction_into(ray, hit, si),
+            _ => *si = self.interaction(ray, hit),
+        }
+    }
+
     /// Surface area in world space.
     #[must_use]
     pub fn area(&self) -> f32 {

@@ -190,7 +190,9 @@ impl Triangle {
         (Interaction { p, p_error, n }, uv, ns, uvs)
     }
 
-    /// The interaction at barycentrics `b`.
+    /// The interaction at barycentrics `b` (always inlined, so that
+    /// [`Self::interaction_into`] writes the fields in place).
+    #[inline(always)]
     fn interaction_at(&self, b: [f32; 3], wo: Vec3, t: f32) -> SurfaceInteraction {
         let (intr, uv, ns, [uv0, uv1, uv2]) = self.geometry_at(b);
         let [p0, p1, p2] = self.positions();
@@ -251,6 +253,12 @@ impl Triangle {
     #[must_use]
     pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
         self.interaction_at(hit.data, -ray.d.normalize(), hit.t)
+    }
+
+    /// [`Self::interaction`] written into `si`, field by field: a returned value could not
+    /// be, since an unwinding call must not leave `si` half written, so it was copied.
+    pub fn interaction_into(&self, ray: &Ray, hit: &ShapeHit, si: &mut SurfaceInteraction) {
+        *si = self.interaction_at(hit.data, -ray.d.normalize(), hit.t);
     }
 
     /// A point uniformly distributed by area.
