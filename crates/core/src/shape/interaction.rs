@@ -61,7 +61,7 @@ pub struct MeshPoint {
 }
 
 /// Everything the integrator needs at a ray hit. The default (all zero) is only a place
-/// for [`crate::scene::Scene::intersect_into`] to write into.
+/// for a caller to write a hit into (the render loop reuses one per path).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceInteraction {
     /// Point, error bound and geometric normal. The normal's orientation follows the
