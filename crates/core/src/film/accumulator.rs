@@ -18,7 +18,8 @@
 
 use rayon::prelude::*;
 
-use super::{Filter, FilterGroup, FilteredSums, Footprint, Splat, SplatSum};
+use super::filter_groups::add_filter_groups;
+use super::{Filter, FilteredSums, Footprint, Splat, SplatSum};
 use crate::color::Rgb;
 
 /// Running sums for one pixel, in `f64` so long renders do not lose precision.
@@ -237,35 +238,19 @@ impl Film {
     }
 
     /// Add one sample index's camera samples under filter splatting: each [`Splat`] is a
-    /// sample's film position and radiance, and adds `f(p - c) L` and `f(p - c)` to the
-    /// group of every pixel `c` the filter covers (in parallel over bands of rows, exact in
-    /// any order); then each pixel of `window` adds its group to its sums (pixels outside
-    /// are another film's, e.g. another machine's: see `RenderSession::set_window`).
-    /// Returns the number of samples reaching no pixel and of groups refused (a term not
-    /// finite or too large).
+    /// sample's film position and radiance. Each pixel `c` of `window` gathers the group
+    /// `sum f(p - c)`, `sum f(p - c) L` of the samples near it and adds it to its sums
+    /// (in parallel over rows; the same bits in any order of the samples). Pixels outside
+    /// the window are another film's, e.g. another machine's: see
+    /// `RenderSession::set_window`. Returns the number of samples reaching no pixel and
+    /// of groups refused (a term not finite or too large).
     ///
     /// # Panics
     /// When the film is not one of filter splatting ([`Self::for_filter_splatting`]).
     pub fn add_filtered(&mut self, samples: &[Splat], filter: &Filter, window: Footprint) -> u64 {
         let (w, h) = (self.width, self.height);
         let sums = self.filtered.as_mut().expect("a film of filter splatting");
-        let mut groups = vec![FilterGroup::default(); sums.len()];
-        let dropped = in_bands(samples, filter, w, h, &mut groups, spread_filtered);
-        if w == 0 {
-            return dropped;
-        }
-        let refused: u64 = sums
-            .par_chunks_mut(w as usize)
-            .zip(groups.par_chunks(w as usize))
-            .enumerate()
-            .filter(|(y, _)| (window.y0..window.y1).contains(&(*y as u32)))
-            .map(|(_, (row, g))| {
-                let cols = window.x0.min(w) as usize..window.x1.min(w) as usize;
-                let kept = row[cols.clone()].iter_mut().zip(&g[cols]).filter(|(_, g)| !g.is_zero());
-                kept.map(|(s, g)| u64::from(!s.add_group(g))).sum::<u64>()
-            })
-            .sum();
-        dropped + refused
+        add_filter_groups(samples, filter, (w, h), window, sums)
     }
 
     /// Add another film's samples of the same image (e.g. a later wave of samples): the
@@ -421,28 +406,6 @@ fn in_bands<S: Send>(
             }
         });
     dropped
-}
-
-/// Add the part of camera sample `s` (footprint `fp`) that falls on image rows `rows` to
-/// their groups `sums` (as [`spread`]), with the filter's value as the weight.
-fn spread_filtered(
-    s: &Splat,
-    fp: &Footprint,
-    filter: &Filter,
-    rows: std::ops::Range<u32>,
-    width: u32,
-    sums: &mut [FilterGroup],
-) {
-    for y in fp.y0.max(rows.start)..fp.y1.min(rows.end) {
-        let row = (y - rows.start) as usize * width as usize;
-        for x in fp.x0..fp.x1 {
-            let wgt = s.weight(filter, 1.0, x, y);
-            if wgt != 0.0 {
-                // Refused only when a term overflows the fixed point: that pixel alone.
-                sums[row + x as usize].add(s.l, wgt);
-            }
-        }
-    }
 }
 
 /// Add the part of splat `s` (footprint `fp`) that falls on image rows `rows`, whose splat

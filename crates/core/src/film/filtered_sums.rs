@@ -13,12 +13,13 @@
 //! (Treating every sample as a unit instead overstates the variance by the spread of the
 //! neighbours' means: 31% on the Cornell box at 128x128.)
 //!
-//! A pixel's sums gather samples from its neighbours' tiles, which threads finish in any
-//! order, so they are kept in fixed point as [`super::SplatSum`] is: each term is rounded
-//! once to a multiple of its unit and added as an `i128`, and any order or grouping of the
-//! same terms gives the same bits. First moments use units of 2^-64 (as splats); the
-//! second moments, computed from a group's exact first moments and only feeding the
-//! variance, units of 2^-32, so a term may reach 2^94 (a radiance of about 1e14).
+//! A pixel's sums gather groups that threads, waves or machines may add in any order, so
+//! they are kept in fixed point as [`super::SplatSum`] is: each term is rounded once to a
+//! multiple of its unit and added as an `i128`, and any order or grouping of the same
+//! terms gives the same bits. (A group itself is an `f64` sum in a fixed order, see
+//! `super::filter_groups`.) First moments use units of 2^-64 (as splats); the second
+//! moments, computed from the group's `f64` sums and only feeding the variance, units of
+//! 2^-32, so a term may reach 2^94 (a radiance of about 1e14).
 
 use crate::color::Rgb;
 
@@ -60,35 +61,26 @@ fn quantize(v: f64, bits: i32) -> Option<i128> {
 }
 
 /// One pixel's share of one sample index: the filter weights and weighted radiance of the
-/// samples reaching it, in fixed point (units of 2^-64).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// samples reaching it, in `f64` (summed in a fixed order, see `super::filter_groups`, and
+/// rounded to fixed point once, by [`FilteredSums::add_group`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FilterGroup {
     /// `sum w`.
-    weight: i128,
+    weight: f64,
     /// `sum w L` per channel.
-    weighted: [i128; 3],
+    weighted: [f64; 3],
 }
 
 impl FilterGroup {
-    /// Add a sample of radiance `l` at filter weight `w` (the products in `f64`, exact,
-    /// before their one rounding). Adds nothing and returns false when a term is not
-    /// finite or too large.
-    pub fn add(&mut self, l: Rgb, w: f32) -> bool {
+    /// Add a sample of radiance `l` at filter weight `w` (the products exact in `f64`). A
+    /// term that is not finite makes the group one [`FilteredSums::add_group`] refuses.
+    #[inline]
+    pub fn add(&mut self, l: Rgb, w: f32) {
         let w = f64::from(w);
-        let q = |v: f64| quantize(v, FIRST_BITS);
-        let (Some(qw), Some(r), Some(g), Some(b)) = (
-            q(w),
-            q(w * f64::from(l.r)),
-            q(w * f64::from(l.g)),
-            q(w * f64::from(l.b)),
-        ) else {
-            return false;
-        };
-        self.weight = self.weight.wrapping_add(qw);
-        for (sum, v) in self.weighted.iter_mut().zip([r, g, b]) {
-            *sum = sum.wrapping_add(v);
+        self.weight += w;
+        for (sum, v) in self.weighted.iter_mut().zip([l.r, l.g, l.b]) {
+            *sum += w * f64::from(v);
         }
-        true
     }
 
     /// True when no sample reached the pixel (or only ones that cancel).
@@ -123,27 +115,26 @@ impl FilteredSums {
         squares: [0; 3],
     };
 
-    /// Add one sample index's group. The second moments are computed from the group's
-    /// exact fixed-point sums, so they depend on nothing but the group. Adds nothing and
-    /// returns false when a square is too large.
+    /// Add one sample index's group, each of its sums and their products rounded once to
+    /// fixed point, so that they depend on nothing but the group. Adds nothing and returns
+    /// false when a term is not finite or too large.
     pub fn add_group(&mut self, g: &FilterGroup) -> bool {
-        let x = to_f64(g.weight, FIRST_BITS);
-        let y = g.weighted.map(|v| to_f64(v, FIRST_BITS));
-        let second = |v: f64| quantize(v, SECOND_BITS);
-        let Some(x2) = second(x * x) else {
+        let (x, y) = (g.weight, g.weighted);
+        let (first, second) = (|v: f64| quantize(v, FIRST_BITS), |v: f64| quantize(v, SECOND_BITS));
+        let (Some(qx), Some(x2)) = (first(x), second(x * x)) else {
             return false;
         };
-        let mut q = [[0i128; 2]; 3];
+        let mut q = [[0i128; 3]; 3];
         for (q, y) in q.iter_mut().zip(y) {
-            let (Some(xy), Some(y2)) = (second(x * y), second(y * y)) else {
+            let (Some(qy), Some(xy), Some(y2)) = (first(y), second(x * y), second(y * y)) else {
                 return false;
             };
-            *q = [xy, y2];
+            *q = [qy, xy, y2];
         }
-        self.weights[0] = self.weights[0].wrapping_add(g.weight);
+        self.weights[0] = self.weights[0].wrapping_add(qx);
         self.weights[1] = self.weights[1].wrapping_add(x2);
-        for (c, [xy, y2]) in q.into_iter().enumerate() {
-            self.weighted[c] = self.weighted[c].wrapping_add(g.weighted[c]);
+        for (c, [qy, xy, y2]) in q.into_iter().enumerate() {
+            self.weighted[c] = self.weighted[c].wrapping_add(qy);
             self.cross[c] = self.cross[c].wrapping_add(xy);
             self.squares[c] = self.squares[c].wrapping_add(y2);
         }
@@ -257,7 +248,7 @@ mod tests {
 
     fn group(samples: &[(Rgb, f32)]) -> FilterGroup {
         let mut g = FilterGroup::default();
-        samples.iter().for_each(|&(l, w)| assert!(g.add(l, w)));
+        samples.iter().for_each(|&(l, w)| g.add(l, w));
         g
     }
 
@@ -284,16 +275,12 @@ mod tests {
     }
 
     #[test]
-    fn any_order_and_grouping_gives_the_same_bits() {
+    fn any_order_and_grouping_of_the_groups_gives_the_same_bits() {
         let gs = groups();
         let mut forward = FilteredSums::ZERO;
         gs.iter().for_each(|g| assert!(forward.add_group(&group(g))));
         let mut backward = FilteredSums::ZERO;
-        gs.iter().rev().for_each(|g| {
-            let mut reversed = g.clone();
-            reversed.reverse();
-            assert!(backward.add_group(&group(&reversed)));
-        });
+        gs.iter().rev().for_each(|g| assert!(backward.add_group(&group(g))));
         let (mut a, mut b) = (FilteredSums::ZERO, FilteredSums::ZERO);
         gs[..123].iter().for_each(|g| assert!(a.add_group(&group(g))));
         gs[123..].iter().for_each(|g| assert!(b.add_group(&group(g))));
@@ -340,13 +327,12 @@ mod tests {
 
     #[test]
     fn bad_terms_are_refused_whole() {
-        let mut g = FilterGroup::default();
-        assert!(!g.add(Rgb::new(1.0, f32::NAN, 1.0), 0.5));
-        assert!(!g.add(Rgb::splat(1.0), f32::INFINITY));
-        assert!(g.is_zero());
+        let mut s = FilteredSums::ZERO;
+        assert!(!s.add_group(&group(&[(Rgb::splat(1.0), 0.5), (Rgb::new(1.0, f32::NAN, 1.0), 0.5)])));
+        assert!(!s.add_group(&group(&[(Rgb::splat(1.0), f32::INFINITY)])));
+        assert!(s.is_zero());
         // y^2 = 1e30 overflows the second moments' range (2^94 ~ 2e28): the group is
         // refused whole.
-        let mut s = FilteredSums::ZERO;
         assert!(!s.add_group(&group(&[(Rgb::new(1e15, 1.0, 1.0), 1.0)])));
         assert!(s.is_zero());
         assert!(s.add_group(&group(&[(Rgb::new(1e13, 1.0, 1.0), 1.0)])));

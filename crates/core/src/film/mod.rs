@@ -4,6 +4,7 @@ mod accumulator;
 mod compare;
 mod desc;
 mod filter;
+mod filter_groups;
 mod filtered_sums;
 mod splat;
 mod splat_sum;

@@ -61,7 +61,7 @@
 
 use super::{Filter, SplatSum};
 use crate::color::Rgb;
-use crate::math::Vec2;
+use crate::math::{ceil_to_i64, floor_to_i64, Vec2};
 
 /// One contribution to the pixels whose filter covers `p_film`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,19 +92,18 @@ impl Splat {
     /// added (not finite, or beyond [`super::MAX_SPLAT`]).
     #[must_use]
     pub fn footprint(&self, filter: &Filter, width: u32, height: u32) -> Option<Footprint> {
-        if !SplatSum::accepts(self.l) {
+        if !SplatSum::accepts(self.l) || !self.p_film.is_finite() {
             return None;
         }
         // Pixel x's centre x + 0.5 within r of p: x in [p - 0.5 - r, p - 0.5 + r].
         let r = filter.radius();
-        let lo = (self.p_film - Vec2::splat(0.5) - r).ceil();
-        let hi = (self.p_film - Vec2::splat(0.5) + r).floor() + Vec2::ONE;
-        let clip = |v: f32, n: u32| v.clamp(0.0, n as f32) as u32;
+        let (lo, hi) = (self.p_film - Vec2::splat(0.5) - r, self.p_film - Vec2::splat(0.5) + r);
+        let clip = |v: i64, n: u32| v.clamp(0, i64::from(n)) as u32;
         let f = Footprint {
-            x0: clip(lo.x, width),
-            x1: clip(hi.x, width),
-            y0: clip(lo.y, height),
-            y1: clip(hi.y, height),
+            x0: clip(ceil_to_i64(lo.x), width),
+            x1: clip(floor_to_i64(hi.x).saturating_add(1), width),
+            y0: clip(ceil_to_i64(lo.y), height),
+            y1: clip(floor_to_i64(hi.y).saturating_add(1), height),
         };
         (f.x0 < f.x1 && f.y0 < f.y1).then_some(f)
     }

@@ -57,8 +57,10 @@ impl SplatSum {
 
     /// Whether every channel of `l` can be added (finite, below [`MAX_SPLAT`]).
     #[must_use]
+    #[inline]
     pub fn accepts(l: Rgb) -> bool {
-        [l.r, l.g, l.b].iter().all(|&v| Self::quantize(v).is_some())
+        // The test `quantize` makes, without its rounding (a library call).
+        [l.r, l.g, l.b].iter().all(|&v| v.is_finite() && v.abs() < MAX_SPLAT)
     }
 
     /// Add `l w` (a splat's radiance times its filter weight for this pixel, rounded to
@@ -162,6 +164,27 @@ mod tests {
         assert!(s.is_zero());
         assert!(s.add(Rgb::splat(MAX_SPLAT * 0.99)));
         assert!(!s.is_zero());
+    }
+
+    #[test]
+    fn accepts_exactly_what_quantize_takes() {
+        let below = f32::from_bits(MAX_SPLAT.to_bits() - 1);
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            below,
+            -below,
+            MAX_SPLAT,
+            -MAX_SPLAT,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+        ] {
+            for l in [Rgb::new(v, 0.5, 0.5), Rgb::new(0.5, v, 0.5), Rgb::new(0.5, 0.5, v)] {
+                assert_eq!(SplatSum::accepts(l), SplatSum::quantize(v).is_some(), "{v}");
+            }
+        }
     }
 
     #[test]

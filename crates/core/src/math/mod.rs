@@ -6,6 +6,7 @@ mod float;
 mod frame;
 pub mod quadrature;
 mod ray;
+mod rounding;
 mod transform;
 
 pub use bounds::Bounds3;
@@ -13,6 +14,7 @@ pub use float::{gamma, next_float_down, next_float_up, offset_ray_origin, SHADOW
 pub use frame::Frame;
 pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec3, Vec4};
 pub use ray::Ray;
+pub use rounding::{ceil_to_i64, floor_to_i64};
 pub use transform::Transform;
 
 /// pi, as `f32`.
