@@ -52,21 +52,22 @@ echo "Cornell box ${RES}x${RES}, ${SPP} spp, max depth 65, ${THREADS} threads; $
 # the fifth bounce, survival min(max throughput, 0.95)) and splats each sample through its
 # tent filter: the `splat rr=mitsuba` row is like for like. The first row is mcrender's
 # default (pbrt-v4's roulette, from the second bounce; filter sampling), the Sobol' row what
-# the scene file asks for.
+# the scene file asks for, and the last mcrender row the best we have (Sobol' and splatting).
 mc_line="$(run_mcrender mc-independent --sampler independent)"
 mc_rr_line="$(run_mcrender mc-independent-rr --sampler independent --rr mitsuba)"
 mc_sobol_line="$(run_mcrender mc-sobol --sampler sobol)"
 mc_splat_line="$(run_mcrender mc-splat-rr --sampler independent --rr mitsuba --reconstruction splat)"
+mc_sobol_splat_line="$(run_mcrender mc-sobol-splat-rr --sampler sobol --rr mitsuba --reconstruction splat)"
 llvm_json="$(run_mitsuba llvm_ad_rgb || true)"
 scalar_json="$(run_mitsuba scalar_rgb || true)"
-errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
+errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mc-sobol-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
 
-python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$llvm_json" "$scalar_json" <<'PY'
+python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$mc_sobol_splat_line" "$llvm_json" "$scalar_json" <<'PY'
 import json, math, re, sys
 res, spp, errors = int(sys.argv[1]), int(sys.argv[2]), [float(e) for e in sys.argv[3].split()]
-mc_lines, peer_lines = sys.argv[4:8], sys.argv[8:10]
+mc_lines, peer_lines = sys.argv[4:9], sys.argv[9:11]
 names = ["mcrender independent", "mcrender indep. rr=mitsuba", "mcrender sobol", "mcrender splat rr=mitsuba",
-         "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
+         "mcrender sobol splat rr=mit.", "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
 llvm = len(mc_lines)
 times = []
 for line in mc_lines:
