@@ -11,6 +11,10 @@ use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene};
 use mcrender_formats::load;
 
+mod common;
+
+use common::agreement::agreement;
+
 const SIZE: u32 = 48;
 const SPP: u32 = 128;
 
@@ -81,42 +85,12 @@ fn render_text(name: &str, text: &str, seed: u64) -> (Vec<Rgb>, Vec<Rgb>) {
     (out.film.mean_image(), out.film.variance_image())
 }
 
-/// Fraction of pixel channels within 3.29 standard errors (two-sided p = 0.001), the
-/// largest z of the per-channel image means, and the mean of the first image.
-fn agreement(a: &(Vec<Rgb>, Vec<Rgb>), b: &(Vec<Rgb>, Vec<Rgb>), scale_a: f32) -> (f64, f64, f64) {
-    let mut within = 0usize;
-    let mut sums = [[0.0f64; 4]; 3];
-    for i in 0..a.0.len() {
-        let (ma, va, mb, vb) = (
-            a.0[i].to_array(),
-            a.1[i].to_array(),
-            b.0[i].to_array(),
-            b.1[i].to_array(),
-        );
-        for k in 0..3 {
-            let (x, y) = (f64::from(ma[k] * scale_a), f64::from(mb[k]));
-            let (vx, vy) = (f64::from(va[k] * scale_a * scale_a), f64::from(vb[k]));
-            let z = (x - y).abs() / (vx + vy).max(1e-12).sqrt();
-            within += usize::from(z < 3.29);
-            sums[k][0] += x;
-            sums[k][1] += y;
-            sums[k][2] += vx;
-            sums[k][3] += vy;
-        }
-    }
-    let max_mean_z = sums
-        .iter()
-        .map(|s| (s[0] - s[1]).abs() / (s[2] + s[3]).sqrt())
-        .fold(0.0, f64::max);
-    let mean = sums.iter().map(|s| s[0]).sum::<f64>() / (3 * a.0.len()) as f64;
-    (within as f64 / (3 * a.0.len()) as f64, max_mean_z, mean)
-}
-
 #[test]
 fn mitsuba_and_pbrt_cylinder_scenes_agree_within_noise() {
     let m = render_text("cylinders.xml", MITSUBA, 1);
     let p = render_text("cylinders.pbrt", PBRT, 2);
-    let (fraction, mean_z, mean) = agreement(&m, &p, 1.0);
+    let a = agreement(&m, &p, 1.0);
+    let (fraction, mean_z, mean) = (a.within, a.max_mean_z, a.mean_a);
     eprintln!(
         "cylinders, Mitsuba vs pbrt description: {:.3}% of channels within 3.29 sigma, image-mean z {mean_z:.2}, mean {mean:.4}",
         fraction * 100.0
@@ -125,7 +99,7 @@ fn mitsuba_and_pbrt_cylinder_scenes_agree_within_noise() {
     assert!(mean > 0.02, "image mean {mean}");
     assert!(fraction > 0.99, "only {:.3}% of pixel channels agree", fraction * 100.0);
     assert!(mean_z < 4.0, "image means differ by {mean_z:.2} standard errors");
-    let (_, scaled_z, _) = agreement(&m, &p, 1.05);
+    let scaled_z = agreement(&m, &p, 1.05).max_mean_z;
     eprintln!("the same with the Mitsuba render 5% brighter: image-mean z {scaled_z:.2}");
     assert!(scaled_z > 4.0, "a 5% brightness error went unnoticed (z {scaled_z:.2})");
 }

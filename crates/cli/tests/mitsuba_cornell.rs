@@ -13,6 +13,7 @@ use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene};
 use mcrender_formats::load;
 
+use common::agreement::agreement;
 use common::shared_scenes::shared_scenes_dir;
 
 const SIZE: u32 = 64;
@@ -31,36 +32,6 @@ fn render_file(path: &std::path::Path, seed: u64) -> (Vec<Rgb>, Vec<Rgb>) {
     (out.film.mean_image(), out.film.variance_image())
 }
 
-/// Fraction of pixel channels within 3.29 standard errors (two-sided p = 0.001), and the
-/// largest z of the per-channel image means.
-fn agreement(a: &(Vec<Rgb>, Vec<Rgb>), b: &(Vec<Rgb>, Vec<Rgb>), scale_a: f32) -> (f64, f64) {
-    let mut within = 0usize;
-    let mut sums = [[0.0f64; 4]; 3];
-    for i in 0..a.0.len() {
-        let (ma, va, mb, vb) = (
-            a.0[i].to_array(),
-            a.1[i].to_array(),
-            b.0[i].to_array(),
-            b.1[i].to_array(),
-        );
-        for k in 0..3 {
-            let (x, y) = (f64::from(ma[k] * scale_a), f64::from(mb[k]));
-            let v = f64::from(va[k] * scale_a * scale_a) + f64::from(vb[k]);
-            let z = (x - y).abs() / v.max(1e-12).sqrt();
-            within += usize::from(z < 3.29);
-            sums[k][0] += x;
-            sums[k][1] += y;
-            sums[k][2] += f64::from(va[k] * scale_a * scale_a);
-            sums[k][3] += f64::from(vb[k]);
-        }
-    }
-    let max_mean_z = sums
-        .iter()
-        .map(|s| (s[0] - s[1]).abs() / (s[2] + s[3]).sqrt())
-        .fold(0.0, f64::max);
-    (within as f64 / (3 * a.0.len()) as f64, max_mean_z)
-}
-
 #[test]
 fn mitsuba_and_pbrt_cornell_boxes_agree_within_noise() {
     let Some(dir) = shared_scenes_dir("mitsuba_and_pbrt_cornell_boxes_agree_within_noise") else {
@@ -68,7 +39,8 @@ fn mitsuba_and_pbrt_cornell_boxes_agree_within_noise() {
     };
     let m = render_file(&dir.join("cornell-box/mitsuba/scene_v3.xml"), 1);
     let p = render_file(&dir.join("cornell-box/scene-v4.pbrt"), 2);
-    let (fraction, mean_z) = agreement(&m, &p, 1.0);
+    let a = agreement(&m, &p, 1.0);
+    let (fraction, mean_z) = (a.within, a.max_mean_z);
     eprintln!(
         "Cornell box, Mitsuba vs pbrt description: {:.3}% of channels within 3.29 sigma, image-mean z {mean_z:.2}",
         fraction * 100.0
@@ -77,7 +49,7 @@ fn mitsuba_and_pbrt_cornell_boxes_agree_within_noise() {
     assert!(fraction > 0.99, "only {:.3}% of pixel channels agree", fraction * 100.0);
     assert!(mean_z < 4.0, "image means differ by {mean_z:.2} standard errors");
     // The test can fail: 5% brighter is far outside the noise.
-    let (_, scaled_z) = agreement(&m, &p, 1.05);
+    let scaled_z = agreement(&m, &p, 1.05).max_mean_z;
     eprintln!("the same with the Mitsuba render 5% brighter: image-mean z {scaled_z:.2}");
     assert!(scaled_z > 4.0, "a 5% brightness error went unnoticed (z {scaled_z:.2})");
 }

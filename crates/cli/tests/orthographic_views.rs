@@ -7,11 +7,15 @@
 
 use std::path::Path;
 
+mod common;
+
 use mcrender_core::color::Rgb;
 use mcrender_core::math::Vec2;
 use mcrender_core::render::{render, RenderOptions};
 use mcrender_core::scene::{SamplerKind, Scene, SceneDescription};
 use mcrender_formats::load;
+
+use common::agreement::agreement;
 
 const W: u32 = 48;
 const H: u32 = 32;
@@ -87,36 +91,6 @@ fn render_desc(mut desc: SceneDescription, seed: u64) -> (Vec<Rgb>, Vec<Rgb>) {
     (out.film.mean_image(), out.film.variance_image())
 }
 
-/// Fraction of pixel channels within 3.29 standard errors (two-sided p = 0.001), and the
-/// largest z of the per-channel image means.
-fn agreement(a: &(Vec<Rgb>, Vec<Rgb>), b: &(Vec<Rgb>, Vec<Rgb>), scale_a: f32) -> (f64, f64) {
-    let mut within = 0usize;
-    let mut sums = [[0.0f64; 4]; 3];
-    for i in 0..a.0.len() {
-        let (ma, va, mb, vb) = (
-            a.0[i].to_array(),
-            a.1[i].to_array(),
-            b.0[i].to_array(),
-            b.1[i].to_array(),
-        );
-        for k in 0..3 {
-            let (x, y) = (f64::from(ma[k] * scale_a), f64::from(mb[k]));
-            let va = f64::from(va[k] * scale_a * scale_a);
-            let z = (x - y).abs() / (va + f64::from(vb[k])).max(1e-12).sqrt();
-            within += usize::from(z < 3.29);
-            sums[k][0] += x;
-            sums[k][1] += y;
-            sums[k][2] += va;
-            sums[k][3] += f64::from(vb[k]);
-        }
-    }
-    let max_mean_z = sums
-        .iter()
-        .map(|s| (s[0] - s[1]).abs() / (s[2] + s[3]).sqrt())
-        .fold(0.0, f64::max);
-    (within as f64 / (3 * a.0.len()) as f64, max_mean_z)
-}
-
 #[test]
 fn mitsuba_and_pbrt_orthographic_views_agree() {
     let dir = tempfile::tempdir().unwrap();
@@ -143,7 +117,8 @@ fn mitsuba_and_pbrt_orthographic_views_agree() {
     }
 
     let (im, ip) = (render_desc(m, 1), render_desc(p, 2));
-    let (fraction, mean_z) = agreement(&im, &ip, 1.0);
+    let a = agreement(&im, &ip, 1.0);
+    let (fraction, mean_z) = (a.within, a.max_mean_z);
     eprintln!(
         "orthographic view, Mitsuba vs pbrt: {:.2}% of channels within 3.29 sigma, image-mean z {mean_z:.2}",
         fraction * 100.0
@@ -151,14 +126,14 @@ fn mitsuba_and_pbrt_orthographic_views_agree() {
     assert!(fraction > 0.99, "only {:.2}% of pixel channels agree", fraction * 100.0);
     assert!(mean_z < 4.0, "image means differ by {mean_z:.2} standard errors");
     // The comparison can fail: 5% brighter, or mirrored left to right.
-    let (_, scaled_z) = agreement(&im, &ip, 1.05);
+    let scaled_z = agreement(&im, &ip, 1.05).max_mean_z;
     assert!(scaled_z > 4.0, "a 5% brightness error went unnoticed (z {scaled_z:.2})");
     let mirror = |v: &Vec<Rgb>| -> Vec<Rgb> {
         (0..(W * H) as usize)
             .map(|i| v[i - i % W as usize + (W as usize - 1 - i % W as usize)])
             .collect()
     };
-    let (mirrored, _) = agreement(&(mirror(&im.0), mirror(&im.1)), &ip, 1.0);
+    let mirrored = agreement(&(mirror(&im.0), mirror(&im.1)), &ip, 1.0).within;
     eprintln!("mirrored: {:.2}% of channels agree", mirrored * 100.0);
     assert!(
         mirrored < 0.9,

@@ -2,6 +2,7 @@
 //! those of the checkpoint tests in [`checkpoint`].
 #![allow(dead_code)]
 
+pub mod agreement;
 pub mod checkpoint;
 #[path = "../../../formats/tests/common/shared_scenes.rs"]
 pub mod shared_scenes;
