@@ -22,6 +22,15 @@ use crate::error::{tidy_message, SceneError};
 use crate::limits::LoadLimits;
 use crate::LoadedScene;
 
+/// Mitsuba's image x runs along the sensor's local -x ("left"), pbrt's camera x along +x:
+/// a sensor's `to_world` is mirrored in x before it becomes our camera transform.
+const IMAGE_X_MIRROR: Mat4 = Mat4::from_cols(
+    glam::Vec4::new(-1.0, 0.0, 0.0, 0.0),
+    glam::Vec4::Y,
+    glam::Vec4::Z,
+    glam::Vec4::W,
+);
+
 /// A decoded image: width, height, texels.
 pub type ImageEntry = (u32, u32, Arc<Vec<Rgb>>);
 
@@ -306,8 +315,7 @@ impl Builder {
             }
         };
         let tan_short = if w <= h { tan_x } else { tan_x * h / w };
-        // Mitsuba's image x runs along camera -x ("left"), pbrt's along +x: mirror x.
-        let m = to_world * Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+        let m = to_world * IMAGE_X_MIRROR;
         let world_from_camera =
             Transform::new(m).ok_or_else(|| SceneError::invalid(&el.loc, "the sensor's to_world is singular"))?;
         let (lens_radius, focal_distance) = if kind == "thinlens" {
@@ -362,8 +370,7 @@ impl Builder {
                 "orthographic sensor: to_world must not shear (scale before rotating)",
             ));
         }
-        let m =
-            to_world * Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0)) * Mat4::from_translation(Vec3::new(0.0, 0.0, near));
+        let m = to_world * IMAGE_X_MIRROR * Mat4::from_translation(Vec3::new(0.0, 0.0, near));
         let world_from_camera =
             Transform::new(m).ok_or_else(|| SceneError::invalid(&el.loc, "the sensor's to_world is singular"))?;
         let aspect = self.desc.film.width as f32 / self.desc.film.height as f32;
