@@ -9,52 +9,11 @@
 
 mod common;
 
+use common::direct_loops::bdpt_mean;
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::integrator::BdptIntegrator;
-use mcrender_core::integrator::TraceStats;
-use mcrender_core::math::{UVec2, Vec2, Vec3, PI};
-use mcrender_core::sampling::Sampler;
+use mcrender_core::math::{Vec3, PI};
 use mcrender_core::scene::{BdptDesc, Scene, SceneDescription};
-
-/// Mean and standard error per channel of the image mean, over `spp` samples per pixel.
-fn bdpt_mean(d: &SceneDescription, bdpt: BdptDesc) -> ([f64; 3], [f64; 3]) {
-    let scene = Scene::build(d).expect("valid scene");
-    let integrator = BdptIntegrator::new(&scene, &bdpt, d.integrator.max_depth);
-    let mut sampler = Sampler::new(&scene.sampler);
-    let mut stats = TraceStats::default();
-    let mut splats = Vec::new();
-    let (mut sum, mut sum2, mut n) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
-    for y in 0..scene.film.height {
-        for x in 0..scene.film.width {
-            for s in 0..scene.sampler.samples_per_pixel {
-                sampler.start_pixel_sample(UVec2::new(x, y), s);
-                let fs = scene.filter.sample(sampler.get_pixel_2d());
-                let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
-                let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
-                splats.clear();
-                let mut v = integrator.li(&scene, ray, &mut sampler, &mut stats, &mut splats);
-                for sp in &splats {
-                    assert!(sp.p_film.x >= 0.0 && sp.p_film.y >= 0.0);
-                    v += sp.l;
-                }
-                assert!(v.is_finite(), "non-finite sample");
-                for c in 0..3 {
-                    sum[c] += f64::from(v[c]);
-                    sum2[c] += f64::from(v[c]) * f64::from(v[c]);
-                }
-                n += 1.0;
-            }
-        }
-    }
-    let mut mean = [0.0; 3];
-    let mut se = [0.0; 3];
-    for c in 0..3 {
-        mean[c] = sum[c] / n;
-        se[c] = ((sum2[c] / n - mean[c] * mean[c]).max(0.0) / (n - 1.0)).sqrt();
-    }
-    (mean, se)
-}
 
 fn power_mis() -> BdptDesc {
     BdptDesc::default()

@@ -5,56 +5,12 @@
 
 mod common;
 
+use common::direct_loops::light_trace;
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::integrator::{LightPathIntegrator, TraceStats};
 use mcrender_core::material::DiffuseMaterial;
-use mcrender_core::math::{Mat4, Transform, UVec2, Vec2, Vec3, PI};
-use mcrender_core::sampling::Sampler;
+use mcrender_core::math::{Mat4, Transform, Vec3, PI};
 use mcrender_core::scene::{GeometryDesc, LightDesc, MaterialDesc, SceneDescription, ShapeDesc, TriangleMeshDesc};
-
-/// The splat image (sums / spp), its mean per channel and the mean's standard error.
-fn light_trace(d: &SceneDescription) -> (Vec<Rgb>, [f64; 3], [f64; 3]) {
-    let scene = mcrender_core::scene::Scene::build(d).expect("valid scene");
-    let integrator = LightPathIntegrator {
-        max_depth: d.integrator.max_depth,
-        russian_roulette: d.integrator.russian_roulette,
-    };
-    let (w, h) = (scene.film.width, scene.film.height);
-    let spp = scene.sampler.samples_per_pixel;
-    let mut image = vec![Rgb::BLACK; (w * h) as usize];
-    let mut sampler = Sampler::new(&scene.sampler);
-    let mut stats = TraceStats::default();
-    let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
-    for y in 0..h {
-        for x in 0..w {
-            for s in 0..spp {
-                sampler.start_pixel_sample(UVec2::new(x, y), s);
-                let mut path = Rgb::BLACK;
-                integrator.trace(&scene, &mut sampler, &mut stats, &mut |p: Vec2, l: Rgb| {
-                    assert!(l.is_finite(), "non-finite splat {l:?}");
-                    let (px, py) = (p.x as u32, p.y as u32);
-                    assert!(px < w && py < h, "splat off the film at {p}");
-                    image[(py * w + px) as usize] += l / spp as f32;
-                    path += l;
-                });
-                for c in 0..3 {
-                    sum[c] += f64::from(path[c]);
-                    sum2[c] += f64::from(path[c]) * f64::from(path[c]);
-                }
-            }
-        }
-    }
-    // The image mean is the mean of the paths' totals over the whole film.
-    let n = f64::from(w * h * spp);
-    let mut mean = [0.0; 3];
-    let mut se = [0.0; 3];
-    for c in 0..3 {
-        mean[c] = sum[c] / n;
-        se[c] = ((sum2[c] / n - mean[c] * mean[c]).max(0.0) / n).sqrt();
-    }
-    (image, mean, se)
-}
 
 fn assert_light_traced_mean(d: &SceneDescription, expected: Rgb) {
     let (_, mean, se) = light_trace(d);

@@ -7,87 +7,16 @@
 
 mod common;
 
+use common::direct_loops::{bdpt_mean, light_trace};
 use common::*;
 use mcrender_core::color::Rgb;
-use mcrender_core::integrator::{BdptIntegrator, LightPathIntegrator, TraceStats};
-use mcrender_core::math::{Mat4, Transform, UVec2, Vec2, Vec3, PI};
-use mcrender_core::sampling::Sampler;
-use mcrender_core::scene::{BdptDesc, Projection, Scene, SceneDescription};
+use mcrender_core::math::{Mat4, Transform, Vec3, PI};
+use mcrender_core::scene::{BdptDesc, Projection, SceneDescription};
 
-type Estimate = ([f64; 3], [f64; 3]);
-
-/// Mean and standard error of independent per-sample values.
-fn estimate(sum: [f64; 3], sum2: [f64; 3], n: f64) -> Estimate {
-    let mut mean = [0.0; 3];
-    let mut se = [0.0; 3];
-    for c in 0..3 {
-        mean[c] = sum[c] / n;
-        se[c] = ((sum2[c] / n - mean[c] * mean[c]).max(0.0) / (n - 1.0)).sqrt();
-    }
+/// Light tracing's image mean and its standard error.
+fn light_traced(d: &SceneDescription) -> ([f64; 3], [f64; 3]) {
+    let (_, mean, se) = light_trace(d);
     (mean, se)
-}
-
-/// Light tracing: each light path's splats summed (the image mean is their mean).
-fn light_traced(d: &SceneDescription) -> Estimate {
-    let scene = Scene::build(d).expect("valid scene");
-    let integrator = LightPathIntegrator {
-        max_depth: d.integrator.max_depth,
-        russian_roulette: d.integrator.russian_roulette,
-    };
-    let (w, h) = (scene.film.width, scene.film.height);
-    let mut sampler = Sampler::new(&scene.sampler);
-    let mut stats = TraceStats::default();
-    let (mut sum, mut sum2, mut n) = ([0.0f64; 3], [0.0f64; 3], 0.0);
-    for y in 0..h {
-        for x in 0..w {
-            for s in 0..scene.sampler.samples_per_pixel {
-                sampler.start_pixel_sample(UVec2::new(x, y), s);
-                let mut path = Rgb::BLACK;
-                integrator.trace(&scene, &mut sampler, &mut stats, &mut |p: Vec2, l: Rgb| {
-                    assert!(p.x >= 0.0 && p.y >= 0.0 && p.x < w as f32 && p.y < h as f32, "{p}");
-                    path += l;
-                });
-                for c in 0..3 {
-                    sum[c] += f64::from(path[c]);
-                    sum2[c] += f64::from(path[c]) * f64::from(path[c]);
-                }
-                n += 1.0;
-            }
-        }
-    }
-    estimate(sum, sum2, n)
-}
-
-/// BDPT: each camera sample's radiance plus its splats.
-fn bdpt(d: &SceneDescription) -> Estimate {
-    let scene = Scene::build(d).expect("valid scene");
-    let integrator = BdptIntegrator::new(&scene, &BdptDesc::default(), d.integrator.max_depth);
-    let mut sampler = Sampler::new(&scene.sampler);
-    let mut stats = TraceStats::default();
-    let mut splats = Vec::new();
-    let (mut sum, mut sum2, mut n) = ([0.0f64; 3], [0.0f64; 3], 0.0);
-    for y in 0..scene.film.height {
-        for x in 0..scene.film.width {
-            for s in 0..scene.sampler.samples_per_pixel {
-                sampler.start_pixel_sample(UVec2::new(x, y), s);
-                let fs = scene.filter.sample(sampler.get_pixel_2d());
-                let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + fs.p;
-                let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
-                splats.clear();
-                let mut v = integrator.li(&scene, ray, &mut sampler, &mut stats, &mut splats);
-                for sp in &splats {
-                    v += sp.l;
-                }
-                assert!(v.is_finite(), "non-finite sample");
-                for c in 0..3 {
-                    sum[c] += f64::from(v[c]);
-                    sum2[c] += f64::from(v[c]) * f64::from(v[c]);
-                }
-                n += 1.0;
-            }
-        }
-    }
-    estimate(sum, sum2, n)
 }
 
 /// Make the camera (at the centre of the scenes' sphere) orthographic, looking down a
@@ -120,7 +49,11 @@ fn check_all(label: &str, mut d: SceneDescription, expected: Rgb, spp: [u32; 3])
             expected,
         );
         d.sampler.samples_per_pixel = spp[2];
-        assert_close(&format!("{label}, lens {lens}, BDPT"), bdpt(&d), expected);
+        assert_close(
+            &format!("{label}, lens {lens}, BDPT"),
+            bdpt_mean(&d, BdptDesc::default()),
+            expected,
+        );
     }
 }
 

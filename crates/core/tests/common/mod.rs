@@ -2,6 +2,8 @@
 //! and statistical assertions.
 #![allow(dead_code, missing_docs)]
 
+pub mod direct_loops;
+
 use mcrender_core::color::Rgb;
 use mcrender_core::material::DiffuseMaterial;
 use mcrender_core::math::{Mat4, Transform, Vec2, Vec3, PI};
