@@ -28,7 +28,7 @@ pub(super) fn add_filter_groups(
     if w == 0 || h == 0 {
         return samples.len() as u64;
     }
-    // (In parallel: done serially, this was the renderer's idle time between waves.)
+    // (In parallel: this runs between waves, while the render threads wait.)
     let kept: Vec<(&Splat, Footprint)> = samples
         .par_iter()
         .filter_map(|s| Some((s, s.footprint(filter, w, h)?)))
