@@ -125,10 +125,13 @@ def chunk_workers() -> list[int]:
 
 
 def test_a_killed_worker_is_retried_and_the_image_is_unchanged(cluster, scene_path):
-    settings = dict(spp=96, seed=11, resolution=(96, 72))
+    # Chunks of about a second each on one core, so that the killer below sees one running
+    # and kills it in its middle (at 96x72 and 96 spp a chunk took 0.1 s, and once the
+    # whole render ended before `ps` ever showed a chunk).
+    settings = dict(spp=256, seed=11, resolution=(192, 144))
     scene = mcrender.load(scene_path)
     scene.resolution = settings["resolution"]
-    local = scene.render(spp=96, seed=11, progress=False)
+    local = scene.render(spp=settings["spp"], seed=settings["seed"], progress=False)
 
     killed: list[int] = []
     stop = threading.Event()
@@ -138,8 +141,11 @@ def test_a_killed_worker_is_retried_and_the_image_is_unchanged(cluster, scene_pa
             pids = chunk_workers()
             if pids:
                 time.sleep(0.3)  # let it get well into its chunk
-                os.kill(pids[0], signal.SIGKILL)
-                killed.append(pids[0])
+                # Only a worker still running its chunk counts: killing an idle one would
+                # test no retry.
+                if pids[0] in chunk_workers():
+                    os.kill(pids[0], signal.SIGKILL)
+                    killed.append(pids[0])
             time.sleep(0.05)
 
     thread = threading.Thread(target=killer)
@@ -151,6 +157,6 @@ def test_a_killed_worker_is_retried_and_the_image_is_unchanged(cluster, scene_pa
     finally:
         stop.set()
         thread.join()
-    assert killed, "no worker was seen running a chunk"
+    assert killed, "no worker was killed while running a chunk"
     assert finished[-1] == (4, 4)
     assert image.tobytes() == local.tobytes()
