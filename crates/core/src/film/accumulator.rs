@@ -238,9 +238,9 @@ impl Film {
     }
 
     /// Add one sample index's camera samples under filter splatting: each [`Splat`] is a
-    /// sample's film position and radiance. Each pixel `c` of `window` gathers the group
-    /// `sum f(p - c)`, `sum f(p - c) L` of the samples near it and adds it to its sums
-    /// (in parallel over rows; the same bits in any order of the samples). Pixels outside
+    /// sample's film position and radiance. Each pixel `c` of `window` adds to its sums the
+    /// group `sum f(p - c)`, `sum f(p - c) L` of the samples whose filter covers it (in
+    /// parallel over bands of rows; the same bits in any order of the samples). Pixels outside
     /// the window are another film's, e.g. another machine's: see
     /// `RenderSession::set_window`. Returns the number of samples reaching no pixel and
     /// of groups refused (a term not finite or too large).
@@ -392,8 +392,7 @@ fn in_bands<S: Send>(
     }
     let footprints: Vec<Option<Footprint>> = items.par_iter().map(|s| s.footprint(filter, w, h)).collect();
     let dropped = footprints.iter().filter(|f| f.is_none()).count() as u64;
-    let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
-    let band_rows = (h as usize).div_ceil(bands);
+    let band_rows = rows_per_band(h);
     sums.par_chunks_mut(band_rows * w as usize)
         .enumerate()
         .for_each(|(b, band)| {
@@ -406,6 +405,13 @@ fn in_bands<S: Send>(
             }
         });
     dropped
+}
+
+/// Rows per band when a `h`-row image is split among the threads of the current rayon
+/// pool: four bands per thread, for balance.
+pub(super) fn rows_per_band(h: u32) -> usize {
+    let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
+    (h as usize).div_ceil(bands)
 }
 
 /// Add the part of splat `s` (footprint `fp`) that falls on image rows `rows`, whose splat

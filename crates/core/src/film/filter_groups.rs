@@ -11,8 +11,9 @@
 
 use rayon::prelude::*;
 
+use super::accumulator::rows_per_band;
 use super::{Filter, FilterGroup, FilteredSums, Footprint, Splat};
-use crate::math::{floor_to_i64, Vec2};
+use crate::math::floor_to_i64;
 
 /// Add the groups of `samples` (one sample index's camera samples) to the sums of the
 /// pixels of `window` (`sums` row-major, `w x h`), in parallel over bands of rows of the
@@ -37,8 +38,7 @@ pub(super) fn add_filter_groups(
     let bins = Bins::new(&kept, w, h);
     let reach = Reach::of(filter.radius().y);
     let (cols, rows) = (window.x0.min(w)..window.x1.min(w), window.y0..window.y1.min(h));
-    let bands = (4 * rayon::current_num_threads()).clamp(1, h as usize);
-    let band_rows = (h as usize).div_ceil(bands);
+    let band_rows = rows_per_band(h);
     let refused: u64 = sums
         .par_chunks_mut(band_rows * w as usize)
         .enumerate()
@@ -81,7 +81,7 @@ fn band_groups(
             for y in fp.y0.max(rows.start)..fp.y1.min(rows.end) {
                 let row = (y - rows.start) as usize * width;
                 for x in fp.x0.max(cols.start)..fp.x1.min(cols.end) {
-                    let wgt = filter.evaluate(s.p_film - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                    let wgt = s.weight(filter, 1.0, x, y);
                     if wgt != 0.0 {
                         groups[row + (x - cols.start) as usize].add(s.l, wgt);
                     }
@@ -178,6 +178,7 @@ mod tests {
     use super::*;
     use crate::color::Rgb;
     use crate::film::FilterDesc;
+    use crate::math::Vec2;
 
     /// Samples of two indices' worth over a 7x5 image, some outside it and some on pixel
     /// edges, with radiance spread over magnitudes so that float order would show.
@@ -204,7 +205,7 @@ mod tests {
         }
     }
 
-    fn gathered(samples: &[Splat], filter: &Filter, window: Footprint) -> (Vec<FilteredSums>, u64) {
+    fn grouped(samples: &[Splat], filter: &Filter, window: Footprint) -> (Vec<FilteredSums>, u64) {
         let mut sums = vec![FilteredSums::ZERO; 35];
         let dropped = add_filter_groups(samples, filter, (7, 5), window, &mut sums);
         (sums, dropped)
@@ -235,7 +236,7 @@ mod tests {
     fn groups_match_every_sample_weighed_for_every_pixel() {
         let all = samples();
         for filter in filters() {
-            let (got, _) = gathered(&all, &filter, whole(7, 5));
+            let (got, _) = grouped(&all, &filter, whole(7, 5));
             for (i, sums) in got.iter().enumerate() {
                 let centre = Vec2::new((i % 7) as f32 + 0.5, (i / 7) as f32 + 0.5);
                 let mut group = FilterGroup::default();
@@ -270,13 +271,13 @@ mod tests {
             l: Rgb::splat(1e-3),
         });
         for filter in filters() {
-            let forward = gathered(&all, &filter, whole(7, 5));
+            let forward = grouped(&all, &filter, whole(7, 5));
             let mut reversed = all.clone();
             reversed.reverse();
-            assert_eq!(gathered(&reversed, &filter, whole(7, 5)), forward);
+            assert_eq!(grouped(&reversed, &filter, whole(7, 5)), forward);
             let mut rotated = all.clone();
             rotated.rotate_left(17);
-            assert_eq!(gathered(&rotated, &filter, whole(7, 5)), forward);
+            assert_eq!(grouped(&rotated, &filter, whole(7, 5)), forward);
         }
     }
 
@@ -284,14 +285,14 @@ mod tests {
     fn a_window_holds_the_whole_images_pixels_and_nothing_else() {
         let all = samples();
         let filter = &filters()[1];
-        let (whole_sums, _) = gathered(&all, filter, whole(7, 5));
+        let (whole_sums, _) = grouped(&all, filter, whole(7, 5));
         let window = Footprint {
             x0: 2,
             x1: 5,
             y0: 1,
             y1: 3,
         };
-        let (part, _) = gathered(&all, filter, window);
+        let (part, _) = grouped(&all, filter, window);
         for (i, (a, b)) in part.iter().zip(&whole_sums).enumerate() {
             let (x, y) = ((i % 7) as u32, (i / 7) as u32);
             if (2..5).contains(&x) && (1..3).contains(&y) {
@@ -317,7 +318,7 @@ mod tests {
             p_film: Vec2::new(2.5, 2.5),
             l: Rgb::splat(1.0),
         };
-        let (sums, dropped) = gathered(&[far, nan, near], filter, whole(7, 5));
+        let (sums, dropped) = grouped(&[far, nan, near], filter, whole(7, 5));
         assert_eq!(dropped, 2);
         assert_eq!(sums[2 * 7 + 2].mean(), Rgb::splat(1.0));
         // A radiance whose square overflows the second moments refuses its pixels' groups
@@ -326,7 +327,7 @@ mod tests {
             p_film: Vec2::new(2.5, 2.5),
             l: Rgb::new(1e15, 1.0, 1.0),
         };
-        let (sums, refused) = gathered(&[huge], filter, whole(7, 5));
+        let (sums, refused) = grouped(&[huge], filter, whole(7, 5));
         assert_eq!(refused, 1);
         assert!(sums.iter().all(FilteredSums::is_zero));
         assert_eq!(add_filter_groups(&[near], filter, (0, 0), whole(0, 0), &mut []), 1);

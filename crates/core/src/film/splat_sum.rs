@@ -35,7 +35,7 @@ impl SplatSum {
     /// from zero); `None` when `v` is not finite or too large.
     #[must_use]
     pub fn quantize(v: f32) -> Option<i128> {
-        if !v.is_finite() || v.abs() >= MAX_SPLAT {
+        if !fits(v) {
             return None;
         }
         // Exact: scaling an f32 by a power of two in f64 neither rounds nor overflows, and
@@ -60,7 +60,7 @@ impl SplatSum {
     #[inline]
     pub fn accepts(l: Rgb) -> bool {
         // The test `quantize` makes, without its rounding (a library call).
-        [l.r, l.g, l.b].iter().all(|&v| v.is_finite() && v.abs() < MAX_SPLAT)
+        [l.r, l.g, l.b].into_iter().all(fits)
     }
 
     /// Add `l w` (a splat's radiance times its filter weight for this pixel, rounded to
@@ -101,6 +101,12 @@ impl SplatSum {
     pub fn from_fixed(fixed: [i128; 3]) -> Self {
         Self { fixed }
     }
+}
+
+/// Whether a splat channel can be fixed: finite and below [`MAX_SPLAT`] in magnitude.
+#[inline]
+fn fits(v: f32) -> bool {
+    v.is_finite() && v.abs() < MAX_SPLAT
 }
 
 #[cfg(test)]
