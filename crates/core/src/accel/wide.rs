@@ -35,6 +35,13 @@ const SMALL_STACK: usize = 16;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
 const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 
+/// Trees of more bytes (nodes and triangle blocks) than about a core's L2 cache prefetch the
+/// nodes and blocks the traversal pushes, so their cache misses overlap the work on nearer
+/// children. `bench/rays.sh`'s 1M-triangle mesh, 1 thread, four alternating rounds:
+/// incoherent closest hit 0.98 to 1.16 M rays/s on average, shadow rays 0.61 to 0.72. A small
+/// tree stays in cache, where the hints are only instructions (1.3% more on the Cornell box).
+const PREFETCH_FROM_BYTES: usize = 512 << 10;
+
 /// A node: up to four children's boxes and what each child is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
@@ -146,6 +153,9 @@ pub struct WideBvh {
     blocks: Vec<TriBlock>,
     /// The instruction set of the `*_triangles` queries.
     isa: Isa,
+    /// True when the tree is too large to stay in cache, so the traversal prefetches the
+    /// children it pushes (see [`PREFETCH_FROM_BYTES`]).
+    prefetch: bool,
 }
 
 impl WideBvh {
@@ -165,7 +175,7 @@ impl WideBvh {
         }
         let mut prims = wide_build::build_prims(count, bounds_of);
         let (nodes, root, bounds, levels) = wide_build::build_wide(&mut prims, wide_build::Costs::for_count(count));
-        Self {
+        let mut bvh = Self {
             nodes,
             prim_indices: prims.par_iter().map(wide_build::BuildPrim::index).collect(),
             root: Some(root),
@@ -173,7 +183,16 @@ impl WideBvh {
             stack_size: (1 + (WIDTH - 1) * levels).min(MAX_STACK),
             blocks: Vec::new(),
             isa: Isa::best(),
-        }
+            prefetch: false,
+        };
+        bvh.prefetch = bvh.is_larger_than_a_cache();
+        bvh
+    }
+
+    /// True when the nodes and triangle blocks take [`PREFETCH_FROM_BYTES`] or more.
+    fn is_larger_than_a_cache(&self) -> bool {
+        std::mem::size_of_val(self.nodes.as_slice()) + std::mem::size_of_val(self.blocks.as_slice())
+            >= PREFETCH_FROM_BYTES
     }
 
     /// Put `items`, the primitives `0..items.len()` the tree was built over, in the order its
@@ -301,7 +320,7 @@ impl WideBvh {
                 for (t, &p) in tris.iter_mut().zip(prims) {
                     *t = triangle(p).expect("checked above");
                 }
-                TriBlock::new(child, &tris[..prims.len()])
+                TriBlock::new(child, prims, &tris[..prims.len()])
             })
             .collect();
         if self.blocks.is_empty() {
@@ -309,6 +328,7 @@ impl WideBvh {
         } else {
             self.blocks.extend(blocks);
         }
+        self.prefetch = self.is_larger_than_a_cache();
     }
 
     /// Leaves whose triangles are precomputed by [`Self::attach_triangles`].
@@ -372,6 +392,20 @@ impl WideBvh {
         }
     }
 
+    /// Start loading what `entry` refers to: the node, or the leaf's triangle block.
+    #[inline(always)]
+    fn prefetch_entry(&self, entry: Entry) {
+        if entry.count == INNER {
+            if let Some(node) = self.nodes.get(entry.child as usize) {
+                simd::prefetch(node);
+            }
+        } else if entry.count & BLOCK != 0 {
+            if let Some(block) = self.blocks.get(entry.child as usize) {
+                simd::prefetch(block);
+            }
+        }
+    }
+
     /// Visit the leaves `ray` enters, nearest entry first, with `leaf` (which may shrink
     /// `t_max`); true when it stopped the traversal.
     #[inline(always)]
@@ -428,6 +462,9 @@ impl WideBvh {
                     count: node.count[i],
                     t_near: near[i],
                 };
+                if self.prefetch {
+                    self.prefetch_entry(entry);
+                }
                 let mut j = sp;
                 while j > base && stack[j - 1].t_near < entry.t_near {
                     stack[j] = stack[j - 1];
@@ -564,7 +601,7 @@ where
                 let i = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 if let Some(h) = c.hit(i, *t_max) {
-                    let prim = bvh.prim_indices[block.start as usize + i];
+                    let prim = block.prims[i];
                     *t_max = h.t;
                     self.best = Some((prim, (self.on_triangle)(prim, h)));
                 }
@@ -719,6 +756,45 @@ mod tests {
             leaves < n / 3,
             "{leaves} leaves for {n} primitives: leaves did not fill up"
         );
+    }
+
+    /// A tree larger than a cache prefetches, a small one does not, and prefetching changes
+    /// no answer.
+    #[test]
+    fn large_trees_prefetch_and_find_the_same_hits() {
+        let small = WideBvh::build(&[unit_box(Vec3::ZERO), unit_box(Vec3::X * 3.0)]);
+        assert!(!small.prefetch);
+        let b: Vec<Bounds3> = (0..40_000)
+            .map(|i| unit_box(Vec3::new((i % 200) as f32, (i / 200) as f32, (i % 7) as f32)))
+            .collect();
+        let bvh = WideBvh::build(&b);
+        assert!(bvh.prefetch, "{} nodes", bvh.nodes().len());
+        let mut plain = bvh.clone();
+        plain.prefetch = false;
+        let hits = |tree: &WideBvh, ray: &Ray| {
+            // A box that is hit counts at the distance of its centre along the ray.
+            let closest = tree.closest_hit(ray, f32::INFINITY, |i, r, t_max| {
+                let bx = b[i as usize];
+                let t = ((bx.min + bx.max) * 0.5 - r.o).dot(r.d) / r.d.length_squared();
+                (bx.hit(r.o.into(), r.d.recip().into(), t_max) && t > 0.0 && t < t_max).then_some((t, ()))
+            });
+            let any = tree.any_hit(ray, 50.0, |i, r, t| {
+                b[i as usize].hit(r.o.into(), r.d.recip().into(), t)
+            });
+            (closest.map(|(i, ())| i), any)
+        };
+        let mut hit_some = 0;
+        for k in 0..500 {
+            let f = k as f32;
+            let ray = Ray::new(
+                Vec3::new(-5.0, f * 0.37 % 200.0, 3.0),
+                Vec3::new(1.0, 0.3 * (f * 0.13).sin(), 0.1 * (f * 0.7).cos()),
+            );
+            let found = hits(&bvh, &ray);
+            assert_eq!(found, hits(&plain, &ray), "ray {ray:?}");
+            hit_some += usize::from(found.0.is_some());
+        }
+        assert!(hit_some > 250, "only {hit_some} of 500 rays hit a box");
     }
 
     #[test]
