@@ -136,14 +136,16 @@ pub(super) fn prefetch<T>(value: &T) {
 mod tests {
     use super::*;
 
-    /// Prefetching values of every size (none, under a cache line, several) is harmless.
+    /// Runs the prefetch loop over no cache line, part of one and several, so every path of
+    /// its `unsafe` block runs in the tests (the hint itself cannot fail: an out-of-bounds
+    /// pointer would show under Miri), and the value is left as it was.
     #[test]
     fn prefetch_any_size() {
         prefetch(&());
         prefetch(&7u8);
         let big = [3u64; 100];
         prefetch(&big);
-        assert_eq!(big.iter().sum::<u64>(), 300);
+        assert_eq!(big, [3u64; 100]);
     }
 
     #[test]
