@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use super::accumulator::rows_per_band;
 use super::{Filter, FilterGroup, FilteredSums, Footprint, Splat};
-use crate::math::floor_to_i64;
+use crate::math::{ceil_to_i64, floor_to_i64};
 
 /// Add the groups of `samples` (one sample index's camera samples) to the sums of the
 /// pixels of `window` (`sums` row-major, `w x h`), in parallel over bands of rows of the
@@ -107,10 +107,10 @@ impl Reach {
     /// (`j <= p < j + 1`) that needs `c - j < r + 1/2` and `j - c <= r + 1/2`.
     fn of(r: f32) -> Self {
         let r = r + 0.5;
-        let clamp = |v: f32| v.clamp(0.0, u32::MAX as f32) as u32;
+        let clamp = |v: i64| v.clamp(0, i64::from(u32::MAX)) as u32;
         Self {
-            before: clamp(r.ceil() - 1.0),
-            after: clamp(r.floor()),
+            before: clamp(ceil_to_i64(r) - 1),
+            after: clamp(floor_to_i64(r)),
         }
     }
 }
