@@ -95,7 +95,7 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     let threads = pool.current_num_threads();
 
     let start = Instant::now();
-    let (mut bvh, triangles) = pool.install(|| build(triangles));
+    let mut bvh = pool.install(|| build(&triangles));
     let build_s = start.elapsed().as_secs_f64();
     if let Some(isa) = args.isa {
         bvh.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
@@ -146,13 +146,14 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     Ok(())
 }
 
-/// Build over `triangles`; they come back in the order the tree wants them (its leaf order,
-/// as the scene stores its primitives).
-fn build(triangles: Vec<Triangle>) -> (WideBvh, Vec<Triangle>) {
+/// Build over `triangles`, left in the mesh's order: the leaf blocks hold every leaf's
+/// vertices and primitive indices, so tracing never reads the triangles, and putting them in
+/// leaf order (as a scene does for its shading lookups, [`WideBvh::reorder_by_leaves`]) is no
+/// part of the tree. Embree, the peer, leaves the caller's arrays as they are too.
+fn build(triangles: &[Triangle]) -> WideBvh {
     let mut bvh = WideBvh::build_with(triangles.len(), |i| triangles[i].bounds());
-    let triangles = bvh.reorder_by_leaves(triangles);
     bvh.attach_triangles(|i| Some(triangles[i as usize].positions()));
-    (bvh, triangles)
+    bvh
 }
 
 /// Hit distance of one ray (closest) or 0 / +inf (any).
