@@ -8,6 +8,7 @@
 //! float32 per ray: the hit distance `t` in units of the direction's length (the hit point
 //! is `o + t d`), +inf for a miss; for `--query any`, 0 for a blocked ray and +inf otherwise.
 
+use crate::stdout::say;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -100,7 +101,7 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
     if let Some(isa) = args.isa {
         bvh.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
     }
-    println!(
+    say!(
         "mesh {}: {} triangles; 4-wide ({}) BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
         args.mesh.display(),
         triangles.len(),
@@ -130,7 +131,7 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
         std::fs::write(path, bytes).with_context(|| format!("{}: cannot write the hits", path.display()))?;
     }
     let hit_count = hits.iter().filter(|t| t.is_finite()).count();
-    println!(
+    say!(
         "{} {} rays ({} hit), best of {} on {threads} thread{}: {:.4} s, {:.2} M rays/s",
         match args.query {
             Query::Closest => "closest-hit",

@@ -2,6 +2,7 @@
 //! per channel of each, and the relative error of block means; optionally a false-colour
 //! image of the per-pixel relative error.
 
+use crate::stdout::say;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
@@ -79,9 +80,9 @@ pub fn run(args: &DiffArgs) -> Result<()> {
     }
     let cmp = ImageComparison::new(&a.pixels, &b.pixels, a.width, a.height, args.block)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&cmp))?);
+        say!("{}", serde_json::to_string_pretty(&to_json(&cmp))?);
     } else {
-        print_table(args, &cmp);
+        crate::stdout::write(&table(args, &cmp))?;
     }
     if let Some(path) = &args.error_image {
         let err = pixel_rel_error(&a.pixels, &b.pixels);
@@ -111,28 +112,33 @@ fn false_colour(e: f64) -> Rgb {
     }
 }
 
-fn print_table(args: &DiffArgs, c: &ImageComparison) {
-    println!("A: {}", args.a.display());
-    println!(
-        "B: {}{}",
+/// The comparison as the table `diff` prints.
+fn table(args: &DiffArgs, c: &ImageComparison) -> String {
+    let mut t = format!("A: {}\n", args.a.display());
+    t += &format!(
+        "B: {}{}\n",
         args.b.display(),
         args.downsample_b
             .map(|f| format!(" (box-downsampled {f}x)"))
             .unwrap_or_default()
     );
-    println!(
-        "size {}x{}, {} blocks of {}x{}",
+    t += &format!(
+        "size {}x{}, {} blocks of {}x{}\n",
         c.width, c.height, c.blocks, c.block, c.block
     );
-    println!("MSE          {:.6e}", c.mse);
-    println!("relative MSE {:.6e}", c.rel_mse);
-    println!("{:<22}{:>12}{:>12}{:>12}", "", "R", "G", "B");
-    let row = |name: &str, v: [f64; 3]| println!("{name:<22}{:>12.6}{:>12.6}{:>12.6}", v[0], v[1], v[2]);
-    row("mean A", c.mean_a);
-    row("mean B", c.mean_b);
-    row("mean (A-B)/B", c.mean_rel_diff());
-    row("block rel err mean", c.block_rel_mean);
-    row("block rel err max", c.block_rel_max);
+    t += &format!("MSE          {:.6e}\n", c.mse);
+    t += &format!("relative MSE {:.6e}\n", c.rel_mse);
+    t += &format!("{:<22}{:>12}{:>12}{:>12}\n", "", "R", "G", "B");
+    for (name, v) in [
+        ("mean A", c.mean_a),
+        ("mean B", c.mean_b),
+        ("mean (A-B)/B", c.mean_rel_diff()),
+        ("block rel err mean", c.block_rel_mean),
+        ("block rel err max", c.block_rel_max),
+    ] {
+        t += &format!("{name:<22}{:>12.6}{:>12.6}{:>12.6}\n", v[0], v[1], v[2]);
+    }
+    t
 }
 
 fn to_json(c: &ImageComparison) -> serde_json::Value {

@@ -3,7 +3,7 @@
 //! Exit codes: 0 success, 2 bad input (unreadable or malformed scene, absurd parameters,
 //! unwritable output, a checkpoint that does not match), with a message on stderr naming
 //! what is wrong; 130 / 143 a render stopped by SIGINT / SIGTERM (image so far and a
-//! checkpoint written).
+//! checkpoint written); 141 when standard output was closed by its reader (`| head`).
 
 mod bdpt_visualize;
 mod bench_rays_cmd;
@@ -21,6 +21,7 @@ mod render_cmd;
 mod scene_args;
 mod sppm_render;
 mod state_driver;
+mod stdout;
 mod study;
 
 use std::process::ExitCode;
@@ -76,6 +77,7 @@ fn main() -> ExitCode {
         Err(e) if e.downcast_ref::<interrupt::Interrupted>().is_some() => {
             ExitCode::from(e.downcast_ref::<interrupt::Interrupted>().map_or(2, |i| i.code))
         }
+        Err(e) if e.downcast_ref::<stdout::ReaderGone>().is_some() => ExitCode::from(stdout::READER_GONE_STATUS),
         Err(e) => {
             eprintln!("mcrender: error: {}", error_line(&e));
             ExitCode::from(2)

@@ -3,6 +3,7 @@
 //! independent trials: variance x N stays about pi (4 - pi) ~= 2.697 for every N, the 1/N
 //! law of Monte Carlo error.
 
+use crate::stdout::say;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -78,9 +79,9 @@ pub fn run(args: &PiArgs) -> Result<()> {
         })
         .collect();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(args, &rows))?);
+        say!("{}", serde_json::to_string_pretty(&to_json(args, &rows))?);
     } else {
-        print!("{}", table(args, &rows));
+        crate::stdout::write(&table(args, &rows))?;
     }
     if let Some(path) = &args.plot {
         write_plot(path, args, &rows)?;

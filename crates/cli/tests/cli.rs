@@ -237,3 +237,22 @@ fn mitsuba_scene_renders_with_a_define() {
     assert!(stderr(&o).contains("3 spp"), "{}", stderr(&o));
     assert!(dir.path().join("out.exr").exists());
 }
+
+/// A reader that closes the pipe (`mcrender pi | head -1` once `head` has its line) stops the
+/// command quietly with status 141 (128 + SIGPIPE, what a shell reports for such a process),
+/// never a panic. The pipe's read end is closed before the command starts, so every write
+/// meets the closed pipe, whatever the timing.
+#[test]
+fn closed_stdout_ends_quietly_with_status_141() {
+    for args in [&["pi", "--samples", "10,100"][..], &["pi", "--samples", "10", "--json"]] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_mcrender"))
+            .args(args)
+            .stdout(writer)
+            .output()
+            .expect("mcrender runs");
+        assert_eq!(o.status.code(), Some(141), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), "", "{args:?}");
+    }
+}

@@ -1,6 +1,7 @@
 //! `mcrender bounces`: the same scene with increasing maximum depth (the lecture's 1, 2, 4,
 //! 8, 16 bounces), one image per depth and a labelled contact sheet.
 
+use crate::stdout::say;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
@@ -46,7 +47,7 @@ pub fn run(args: &BouncesArgs) -> Result<()> {
         let out = RenderSession::new(&scene, &opts)?.render_samples(0..desc.sampler.samples_per_pixel, &())?;
         let img = film_image(&out.film);
         let path = write_into(&args.out_dir, &format!("{stem}-depth-{depth}.png"), &img)?;
-        println!(
+        say!(
             "depth {depth:>3}: {:.2} s, mean radiance {:.5} -> {}",
             out.stats.elapsed.as_secs_f64(),
             mean_luminance(&img.pixels),
@@ -61,7 +62,7 @@ pub fn run(args: &BouncesArgs) -> Result<()> {
     }
     let sheet = contact_sheet(&images, images.len().min(5))?;
     let path = write_into(&args.out_dir, &format!("{stem}-bounces.png"), &sheet)?;
-    println!("contact sheet -> {}", path.display());
+    say!("contact sheet -> {}", path.display());
     Ok(())
 }
 

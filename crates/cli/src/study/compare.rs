@@ -9,6 +9,7 @@
 //! without one, a long render of the first integrator). Both write the same table, JSON,
 //! images, contact sheet and log-log convergence plot.
 
+use crate::stdout::say;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
@@ -316,9 +317,9 @@ fn write_report(args: &CompareArgs, stem: &str, report: &Report) -> Result<()> {
         top.insert("scene".into(), stem.into());
         top.extend(report.json_extra.clone());
         top.insert(format!("{}s", report.kind), table.into());
-        println!("{}", serde_json::to_string_pretty(&serde_json::Value::Object(top))?);
+        say!("{}", serde_json::to_string_pretty(&serde_json::Value::Object(top))?);
     } else {
-        print_table(report);
+        print_table(report)?;
     }
     eprintln!(
         "mcrender: compare: wrote {} and {}",
@@ -328,9 +329,9 @@ fn write_report(args: &CompareArgs, stem: &str, report: &Report) -> Result<()> {
     Ok(())
 }
 
-fn print_table(report: &Report) {
+fn print_table(report: &Report) -> Result<()> {
     let dash = || "-".to_string();
-    println!(
+    say!(
         "{:<20}{:>14}{:>12}{:>14}{:>14}{:>10}{:>14}{:>10}",
         report.kind,
         "samples",
@@ -346,7 +347,7 @@ fn print_table(report: &Report) {
         "relative"
     );
     for r in &report.rows {
-        println!(
+        say!(
             "{:<20}{:>14}{:>12.5}{:>14}{:>14}{:>10.3}{:>14.4e}{:>10.3}",
             r.name,
             format!(
@@ -366,5 +367,6 @@ fn print_table(report: &Report) {
             r.relative_efficiency
         );
     }
-    println!("{}", report.footnote);
+    say!("{}", report.footnote);
+    Ok(())
 }

@@ -2,6 +2,7 @@
 //! mean radiance with its standard error, and error against a reference for each, showing
 //! the time saved and that the mean does not move.
 
+use crate::stdout::say;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -92,9 +93,15 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
     };
     let ref_mean = reference.iter().map(|c| f64::from(c.luminance())).sum::<f64>() / reference.len().max(1) as f64;
 
-    println!(
+    say!(
         "{:<20}{:>10}{:>10}{:>12}{:>12}{:>14}{:>12}",
-        "setting", "time (s)", "speed-up", "mean L", "+- (1 se)", "rel. MSE", "rays"
+        "setting",
+        "time (s)",
+        "speed-up",
+        "mean L",
+        "+- (1 se)",
+        "rel. MSE",
+        "rays"
     );
     let mut base_time = None;
     for &rr in &args.settings {
@@ -113,7 +120,7 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
             .sqrt();
         let t = prog.time.as_secs_f64();
         let t0 = *base_time.get_or_insert(t);
-        println!(
+        say!(
             "{:<20}{:>10.3}{:>10.2}{:>12.5}{:>12.5}{:>14.4e}{:>12}",
             describe(rr),
             t,
@@ -124,6 +131,6 @@ pub fn run(args: &RrStudyArgs) -> Result<()> {
             prog.rays
         );
     }
-    println!("reference mean L {ref_mean:.5}; speed-up relative to the first row; {spp} spp, {w}x{h}");
+    say!("reference mean L {ref_mean:.5}; speed-up relative to the first row; {spp} spp, {w}x{h}");
     Ok(())
 }
