@@ -102,14 +102,14 @@ impl RayBoxes {
     }
 
     /// Slab test of the ray against the node's four boxes within `(0, t_max)`: entry
-    /// distances and which boxes are entered. The far distances are scaled by
+    /// distances and the boxes entered as a mask (bit `i` for lane `i`). The far distances are scaled by
     /// `1 + 2 gamma(3)` so rounding cannot make a ray miss a box it touches (pbrt-v4
     /// `Bounds3::IntersectP`), and the near ones by `1 - 2 gamma(3)` so a `t_max` just past
     /// a hit on a box face does not cull the box. A ray parallel to a slab with its origin on the slab's plane
     /// gives `0 x inf = NaN`, which the comparisons below ignore: that slab does not limit
     /// the ray (conservative, so flat boxes are not missed).
     #[inline(always)]
-    fn hit4(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], [bool; WIDTH]) {
+    fn hit4(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
         let scale = 1.0 + 2.0 * gamma(3);
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
@@ -127,12 +127,12 @@ impl RayBoxes {
                 far[i] = if tf < far[i] { tf } else { far[i] };
             }
         }
-        let mut hit = [false; WIDTH];
+        let mut hit = 0;
         for i in 0..WIDTH {
             // The entry distance shrunk by as much: a hit on the box's face is found
             // even when `t_max` is within rounding of it.
             near[i] *= 1.0 - 2.0 * gamma(3);
-            hit[i] = near[i] <= far[i];
+            hit |= u32::from(near[i] <= far[i]) << i;
         }
         (near, hit)
     }
@@ -454,7 +454,7 @@ impl WideBvh {
             // Push the entered children far to near (insertion into the stack top).
             let base = sp;
             for i in 0..WIDTH {
-                if !hit[i] {
+                if hit & 1 << i == 0 {
                     continue;
                 }
                 let entry = Entry {
@@ -892,7 +892,12 @@ mod tests {
             let (_, hit) = RayBoxes::new(&ray).hit4(&node, t_max);
             for i in 0..WIDTH {
                 let scalar = boxes[i].hit(ray.o.into(), ray.d.recip().into(), t_max);
-                assert_eq!(hit[i], scalar, "lane {i}: box {:?} ray {ray:?} t_max {t_max}", boxes[i]);
+                assert_eq!(
+                    hit >> i & 1 != 0,
+                    scalar,
+                    "lane {i}: box {:?} ray {ray:?} t_max {t_max}",
+                    boxes[i]
+                );
             }
         }
     }
