@@ -3,6 +3,7 @@
 //! triangles precomputed for testing four at a time ([`TriBlock`]) and the instruction set
 //! of the queries chosen at run time ([`Isa`]).
 
+mod paged;
 mod simd;
 mod tri_block;
 mod wide;

@@ -18,8 +18,9 @@ pub const LANES: usize = 4;
 
 type F4 = [f32; LANES];
 
-/// Up to four triangles of one leaf.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Up to four triangles of one leaf (plain data, so a large tree's blocks can sit in a
+/// memory map, [`super::paged`]).
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(16))]
 pub struct TriBlock {
     /// Positions, `p[vertex][axis][lane]`; zero in unused lanes.
@@ -35,6 +36,8 @@ pub struct TriBlock {
     pub start: u32,
     /// The leaf's primitive count (lanes `0..count` are its primitives, in order).
     pub count: u32,
+    /// Zero: fills the block to its alignment, so it has no padding bytes.
+    unused: u32,
 }
 
 impl TriBlock {
@@ -50,6 +53,7 @@ impl TriBlock {
             mask: 0,
             start,
             count: tris.len() as u32,
+            unused: 0,
         };
         for (lane, t) in tris.iter().enumerate() {
             for (v, p) in t.iter().enumerate() {

@@ -14,6 +14,7 @@
 
 use rayon::prelude::*;
 
+use super::paged::Paged;
 use super::simd::{self, Isa};
 use super::tri_block::{self, RayTriangles, TriBlock, TriangleHit};
 use super::wide_build::{self, MAX_DEPTH};
@@ -42,8 +43,9 @@ const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 /// tree stays in cache, where the hints are only instructions (1.3% more on the Cornell box).
 const PREFETCH_FROM_BYTES: usize = 512 << 10;
 
-/// A node: up to four children's boxes and what each child is.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A node: up to four children's boxes and what each child is (plain data, so a large
+/// tree's nodes can sit in a memory map, [`super::paged`]).
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(64))]
 pub struct WideNode {
     /// Box minima, `lo[axis][lane]`; `+inf` in unused lanes, so no ray enters them.
@@ -141,7 +143,7 @@ impl RayBoxes {
 /// The 4-wide hierarchy and the primitive order its leaves refer to.
 #[derive(Clone, Debug, Default)]
 pub struct WideBvh {
-    nodes: Vec<WideNode>,
+    nodes: Paged<WideNode>,
     prim_indices: Vec<u32>,
     /// The root: an inner node, or a leaf when there are at most four primitives.
     root: Option<(u32, u32)>,
@@ -150,7 +152,7 @@ pub struct WideBvh {
     /// `WIDTH - 1` more per inner level below it.
     stack_size: usize,
     /// Precomputed leaf triangles ([`Self::attach_triangles`]).
-    blocks: Vec<TriBlock>,
+    blocks: Paged<TriBlock>,
     /// The instruction set of the `*_triangles` queries.
     isa: Isa,
     /// True when the tree is too large to stay in cache, so the traversal prefetches the
@@ -176,12 +178,12 @@ impl WideBvh {
         let mut prims = wide_build::build_prims(count, bounds_of);
         let (nodes, root, bounds, levels) = wide_build::build_wide(&mut prims, wide_build::Costs::for_count(count));
         let mut bvh = Self {
-            nodes,
+            nodes: Paged::from_vec(nodes),
             prim_indices: prims.par_iter().map(wide_build::BuildPrim::index).collect(),
             root: Some(root),
             bounds,
             stack_size: (1 + (WIDTH - 1) * levels).min(MAX_STACK),
-            blocks: Vec::new(),
+            blocks: Paged::default(),
             isa: Isa::best(),
             prefetch: false,
         };
@@ -191,8 +193,7 @@ impl WideBvh {
 
     /// True when the nodes and triangle blocks take [`PREFETCH_FROM_BYTES`] or more.
     fn is_larger_than_a_cache(&self) -> bool {
-        std::mem::size_of_val(self.nodes.as_slice()) + std::mem::size_of_val(self.blocks.as_slice())
-            >= PREFETCH_FROM_BYTES
+        std::mem::size_of_val(&self.nodes[..]) + std::mem::size_of_val(&self.blocks[..]) >= PREFETCH_FROM_BYTES
     }
 
     /// Put `items`, the primitives `0..items.len()` the tree was built over, in the order its
@@ -223,7 +224,7 @@ impl WideBvh {
     /// The nodes (root first when the root is an inner node).
     #[must_use]
     pub fn nodes(&self) -> &[WideNode] {
-        &self.nodes
+        &self.nodes[..]
     }
 
     /// Primitive indices in leaf order.
@@ -312,22 +313,21 @@ impl WideBvh {
             *child = first + k as u32;
             *count |= BLOCK;
         }
-        let blocks: Vec<TriBlock> = leaves
-            .par_iter()
-            .map(|&(_, child, count)| {
-                let prims = prims_of(child, count).expect("checked above");
-                let mut tris = [[Vec3::ZERO; 3]; tri_block::LANES];
-                for (t, &p) in tris.iter_mut().zip(prims) {
-                    *t = triangle(p).expect("checked above");
-                }
-                TriBlock::new(child, prims, &tris[..prims.len()])
-            })
-            .collect();
-        if self.blocks.is_empty() {
-            self.blocks = blocks;
+        let block = |k: usize| {
+            let (_, child, count) = leaves[k];
+            let prims = prims_of(child, count).expect("checked above");
+            let mut tris = [[Vec3::ZERO; 3]; tri_block::LANES];
+            for (t, &p) in tris.iter_mut().zip(prims) {
+                *t = triangle(p).expect("checked above");
+            }
+            TriBlock::new(child, prims, &tris[..prims.len()])
+        };
+        self.blocks = if self.blocks.is_empty() {
+            Paged::from_fn(leaves.len(), block)
         } else {
-            self.blocks.extend(blocks);
-        }
+            let more: Vec<TriBlock> = (0..leaves.len()).into_par_iter().map(block).collect();
+            self.blocks.concat(&more)
+        };
         self.prefetch = self.is_larger_than_a_cache();
     }
 
@@ -453,14 +453,14 @@ impl WideBvh {
             let (near, hit) = r.hit4(node, t_max);
             // Push the entered children far to near (insertion into the stack top).
             let base = sp;
-            for i in 0..WIDTH {
+            for (i, &t_near) in near.iter().enumerate() {
                 if hit & 1 << i == 0 {
                     continue;
                 }
                 let entry = Entry {
                     child: node.child[i],
                     count: node.count[i],
-                    t_near: near[i],
+                    t_near,
                 };
                 if self.prefetch {
                     self.prefetch_entry(entry);
@@ -890,13 +890,13 @@ mod tests {
             let ray = Ray::new(Vec3::new(rnd(), rnd(), rnd()) * 2.0, d);
             let t_max = if rnd() > 0.0 { f32::INFINITY } else { rnd().abs() };
             let (_, hit) = RayBoxes::new(&ray).hit4(&node, t_max);
-            for i in 0..WIDTH {
-                let scalar = boxes[i].hit(ray.o.into(), ray.d.recip().into(), t_max);
+            for (i, b) in boxes.iter().enumerate() {
+                let scalar = b.hit(ray.o.into(), ray.d.recip().into(), t_max);
                 assert_eq!(
                     hit >> i & 1 != 0,
                     scalar,
                     "lane {i}: box {:?} ray {ray:?} t_max {t_max}",
-                    boxes[i]
+                    b
                 );
             }
         }
