@@ -17,6 +17,10 @@ pub struct Triangle {
     /// Index of the triangle in the mesh.
     pub index: u32,
     p: [Vec3; 3],
+    /// The unit geometric normal `(p0 - p2) x (p1 - p2)`, before any flip (NaN for a
+    /// zero-area triangle, which no ray hits): made once here rather than at every hit,
+    /// where its square root and division were on the critical path of `geometry_at`.
+    n: Vec3,
 }
 
 /// `a*b - c*d` with one rounding (Kahan's algorithm via fused multiply-add).
@@ -40,7 +44,8 @@ impl Triangle {
     pub fn new(mesh: Arc<TriangleMesh>, index: u32) -> Self {
         let [a, b, c] = mesh.vertices(index);
         let p = [mesh.positions[a], mesh.positions[b], mesh.positions[c]];
-        Self { mesh, index, p }
+        let n = (p[0] - p[2]).cross(p[1] - p[2]).normalize();
+        Self { mesh, index, p, n }
     }
 
     /// Vertex positions (world space).
@@ -159,7 +164,7 @@ impl Triangle {
             None => [Vec2::ZERO, Vec2::X, Vec2::ONE],
         };
         let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
-        let mut n = (p0 - p2).cross(p1 - p2).normalize();
+        let mut n = self.n;
         let ns = match &self.mesh.normals {
             Some(normals) => {
                 let [i0, i1, i2] = vertices();
