@@ -8,7 +8,6 @@
 //! float32 per ray: the hit distance `t` in units of the direction's length (the hit point
 //! is `o + t d`), +inf for a miss; for `--query any`, 0 for a blocked ray and +inf otherwise.
 
-use crate::stdout::say;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -20,6 +19,8 @@ use mcrender_core::math::{Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 use mcrender_formats::ply::read_ply;
 use rayon::prelude::*;
+
+use crate::stdout::say;
 
 /// Bytes per ray in `RAYS.bin`.
 const RAY_BYTES: usize = 7 * 4;

@@ -2,7 +2,6 @@
 //! per channel of each, and the relative error of block means; optionally a false-colour
 //! image of the per-pixel relative error.
 
-use crate::stdout::say;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
@@ -10,6 +9,8 @@ use clap::Args;
 use mcrender_core::color::Rgb;
 use mcrender_core::film::{downsample_box, pixel_rel_error, ImageComparison, DEFAULT_BLOCK};
 use mcrender_formats::image_io::{read_image, write_image, ImageRgb};
+
+use crate::stdout::say;
 
 /// Lower end of the error image's scale: relative error 10^LOG_MIN and below is pure blue.
 const LOG_MIN: f64 = -3.0;

@@ -3,7 +3,6 @@
 //! independent trials: variance x N stays about pi (4 - pi) ~= 2.697 for every N, the 1/N
 //! law of Monte Carlo error.
 
-use crate::stdout::say;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -12,6 +11,7 @@ use clap::Args;
 use mcrender_core::lab::{estimate_pi, pi_trials, PiStats, EXACT_VARIANCE_TIMES_N};
 
 use crate::lab::plot::{check_plot_path, log_log_plot, Series};
+use crate::stdout::say;
 
 /// The lecture's sample counts: 1, 10, ..., 10^6.
 const DEFAULT_SAMPLES: &str = "1,10,100,1000,10000,100000,1000000";

@@ -1,7 +1,6 @@
 //! `mcrender bounces`: the same scene with increasing maximum depth (the lecture's 1, 2, 4,
 //! 8, 16 bounces), one image per depth and a labelled contact sheet.
 
-use crate::stdout::say;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
@@ -12,6 +11,7 @@ use mcrender_core::scene::Scene;
 use super::{film_image, write_into};
 use crate::lab::sheet::contact_sheet;
 use crate::scene_args::SceneArgs;
+use crate::stdout::say;
 
 /// Options of `mcrender bounces`.
 #[derive(Args, Debug)]

@@ -9,7 +9,6 @@
 //! without one, a long render of the first integrator). Both write the same table, JSON,
 //! images, contact sheet and log-log convergence plot.
 
-use crate::stdout::say;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
@@ -27,6 +26,7 @@ use super::{film_image, load_reference, write_into};
 use crate::lab::plot::{convergence_plot, log_log_plot};
 use crate::lab::sheet::contact_sheet;
 use crate::scene_args::{parse_strategy, SceneArgs};
+use crate::stdout::say;
 
 /// Options of `mcrender compare`.
 #[derive(Args, Debug)]

@@ -2,7 +2,6 @@
 //! mean radiance with its standard error, and error against a reference for each, showing
 //! the time saved and that the mean does not move.
 
-use crate::stdout::say;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -13,6 +12,7 @@ use mcrender_core::scene::RussianRoulette;
 
 use super::{load_reference, render_in_waves};
 use crate::scene_args::SceneArgs;
+use crate::stdout::say;
 
 /// Options of `mcrender rr-study`.
 #[derive(Args, Debug)]

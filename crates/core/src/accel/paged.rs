@@ -47,12 +47,6 @@ impl<T: Pod + Send + Sync> Paged<T> {
         }
     }
 
-    /// `self` followed by `more`.
-    pub fn concat(&self, more: &[T]) -> Self {
-        let len = self.len() + more.len();
-        Self::from_fn(len, |i| if i < self.len() { self[i] } else { more[i - self.len()] })
-    }
-
     /// A zeroed map for `len` elements, or `None` when they are too few or the map fails.
     fn mapped_zeroed(len: usize) -> Option<Self> {
         let bytes = len.checked_mul(size_of::<T>())?;
@@ -103,7 +97,7 @@ impl<T: Pod> Default for Paged<T> {
 
 impl<T: Pod + Send + Sync> Clone for Paged<T> {
     fn clone(&self) -> Self {
-        Self::from_vec(self.to_vec())
+        Self::from_fn(self.len(), |i| self[i])
     }
 }
 
@@ -118,7 +112,7 @@ mod tests {
     use super::*;
 
     /// Small arrays stay on the heap, large ones are mapped; both hold what was put in, and
-    /// concatenation and cloning keep every element.
+    /// joining and cloning keep every element.
     #[test]
     fn small_arrays_stay_on_the_heap_and_large_ones_are_mapped_intact() {
         let small = Paged::from_fn(1000, |i| i as u32 * 3);
@@ -132,7 +126,8 @@ mod tests {
         let moved = Paged::from_vec((0..n as u32).collect());
         assert!(moved.is_mapped());
         assert!(moved.iter().enumerate().all(|(i, &x)| x == i as u32));
-        let joined = small.concat(&moved);
+        // As `WideBvh::attach_triangles` appends blocks to those of an earlier call.
+        let joined = Paged::from_fn(1000 + n, |i| small.get(i).copied().unwrap_or_else(|| moved[i - 1000]));
         assert!(joined.is_mapped());
         assert_eq!(joined.len(), 1000 + n);
         assert_eq!(

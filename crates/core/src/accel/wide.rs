@@ -322,12 +322,11 @@ impl WideBvh {
             }
             TriBlock::new(child, prims, &tris[..prims.len()])
         };
-        self.blocks = if self.blocks.is_empty() {
-            Paged::from_fn(leaves.len(), block)
-        } else {
-            let more: Vec<TriBlock> = (0..leaves.len()).into_par_iter().map(block).collect();
-            self.blocks.concat(&more)
-        };
+        // After any blocks of an earlier call.
+        let earlier = std::mem::take(&mut self.blocks);
+        self.blocks = Paged::from_fn(earlier.len() + leaves.len(), |k| {
+            earlier.get(k).copied().unwrap_or_else(|| block(k - earlier.len()))
+        });
         self.prefetch = self.is_larger_than_a_cache();
     }
 
