@@ -389,31 +389,6 @@ impl WideBvh {
         simd::any_hit(self, ray, t_max, test)
     }
 
-    /// The primitive range `(start, count)` of a leaf entry.
-    #[inline(always)]
-    fn leaf_range(&self, child: u32, count: u32) -> (usize, usize) {
-        if count & BLOCK != 0 {
-            let b = &self.blocks[child as usize];
-            (b.start as usize, b.count as usize)
-        } else {
-            (child as usize, count as usize)
-        }
-    }
-
-    /// Start loading what `entry` refers to: the node, or the leaf's triangle block.
-    #[inline(always)]
-    fn prefetch_entry(&self, entry: Entry) {
-        if entry.count == INNER {
-            if let Some(node) = self.nodes.get(entry.child as usize) {
-                simd::prefetch(node);
-            }
-        } else if entry.count & BLOCK != 0 {
-            if let Some(block) = self.blocks.get(entry.child as usize) {
-                simd::prefetch(block);
-            }
-        }
-    }
-
     /// Visit the leaves `ray` enters, nearest entry first, with `leaf` (which may shrink
     /// `t_max`); true when it stopped the traversal.
     #[inline(always)]
@@ -424,6 +399,11 @@ impl WideBvh {
         if !(ray.o.is_finite() && ray.d.is_finite()) {
             return false;
         }
+        let view = View {
+            nodes: &self.nodes,
+            blocks: &self.blocks,
+            prim_indices: &self.prim_indices,
+        };
         let r = RayBoxes::new(ray);
         // Only the one array the tree needs is zeroed, from a constant so that it is done
         // with wide stores (a small scene's stack is a few dozen bytes; zeroing all 64
@@ -453,12 +433,12 @@ impl WideBvh {
                 continue;
             }
             if e.count != INNER {
-                if leaf.visit(self, ray, e.child, e.count, &mut t_max) {
+                if leaf.visit(&view, ray, e.child, e.count, &mut t_max) {
                     return true;
                 }
                 continue;
             }
-            let node = &self.nodes[e.child as usize];
+            let node = &view.nodes[e.child as usize];
             let (near, hit) = r.hit4(node, t_max);
             // Push the entered children far to near (insertion into the stack top).
             let base = sp;
@@ -472,7 +452,7 @@ impl WideBvh {
                     t_near,
                 };
                 if self.prefetch {
-                    self.prefetch_entry(entry);
+                    view.prefetch(entry);
                 }
                 let mut j = sp;
                 while j > base && stack[j - 1].t_near < entry.t_near {
@@ -584,7 +564,43 @@ impl WideBvh {
 /// always inlined, and so compiled in the instruction set of the query ([`simd`]).
 trait Leaf {
     /// Test the leaf entry `(child, count)`, possibly shrinking `t_max`; true to stop.
-    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool;
+    fn visit(&mut self, view: &View<'_>, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool;
+}
+
+/// The arrays of a tree a query reads, borrowed once per query: a memory-mapped array's
+/// slice is checked as it is made ([`Paged`]'s `Deref`), which indexing the tree's fields
+/// directly did at every node and block (a branch on the kind of storage, a length check).
+struct View<'a> {
+    nodes: &'a [WideNode],
+    blocks: &'a [TriBlock],
+    prim_indices: &'a [u32],
+}
+
+impl View<'_> {
+    /// The primitive range `(start, count)` of a leaf entry.
+    #[inline(always)]
+    fn leaf_range(&self, child: u32, count: u32) -> (usize, usize) {
+        if count & BLOCK != 0 {
+            let b = &self.blocks[child as usize];
+            (b.start as usize, b.count as usize)
+        } else {
+            (child as usize, count as usize)
+        }
+    }
+
+    /// Start loading what `entry` refers to: the node, or the leaf's triangle block.
+    #[inline(always)]
+    fn prefetch(&self, entry: Entry) {
+        if entry.count == INNER {
+            if let Some(node) = self.nodes.get(entry.child as usize) {
+                simd::prefetch(node);
+            }
+        } else if entry.count & BLOCK != 0 {
+            if let Some(block) = self.blocks.get(entry.child as usize) {
+                simd::prefetch(block);
+            }
+        }
+    }
 }
 
 /// The closest-hit leaf test; with `BLOCKS`, leaf blocks take the four-lane triangle test.
@@ -601,9 +617,9 @@ where
     F: FnMut(u32, TriangleHit) -> H,
 {
     #[inline(always)]
-    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
+    fn visit(&mut self, view: &View<'_>, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
         if BLOCKS && count & BLOCK != 0 {
-            let block = &bvh.blocks[child as usize];
+            let block = &view.blocks[child as usize];
             let c = tri_block::test(block, &self.rt, *t_max);
             let mut mask = c.mask;
             while mask != 0 {
@@ -617,8 +633,8 @@ where
             }
             return false;
         }
-        let (start, n) = bvh.leaf_range(child, count);
-        for &prim in &bvh.prim_indices[start..start + n] {
+        let (start, n) = view.leaf_range(child, count);
+        for &prim in &view.prim_indices[start..start + n] {
             if let Some((t, h)) = (self.test)(prim, ray, *t_max) {
                 *t_max = t;
                 self.best = Some((prim, h));
@@ -636,12 +652,12 @@ struct Any<T, const BLOCKS: bool> {
 
 impl<T: FnMut(u32, &Ray, f32) -> bool, const BLOCKS: bool> Leaf for Any<T, BLOCKS> {
     #[inline(always)]
-    fn visit(&mut self, bvh: &WideBvh, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
+    fn visit(&mut self, view: &View<'_>, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
         if BLOCKS && count & BLOCK != 0 {
-            return tri_block::test(&bvh.blocks[child as usize], &self.rt, *t_max).mask != 0;
+            return tri_block::test(&view.blocks[child as usize], &self.rt, *t_max).mask != 0;
         }
-        let (start, n) = bvh.leaf_range(child, count);
-        bvh.prim_indices[start..start + n]
+        let (start, n) = view.leaf_range(child, count);
+        view.prim_indices[start..start + n]
             .iter()
             .any(|&prim| (self.test)(prim, ray, *t_max))
     }
