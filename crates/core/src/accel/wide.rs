@@ -48,10 +48,11 @@ const PREFETCH_FROM_BYTES: usize = 512 << 10;
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(64))]
 pub struct WideNode {
-    /// Box minima, `lo[axis][lane]`; `+inf` in unused lanes, so no ray enters them.
-    pub lo: [[f32; WIDTH]; 3],
-    /// Box maxima, `hi[axis][lane]`; `-inf` in unused lanes.
-    pub hi: [[f32; WIDTH]; 3],
+    /// Box minima `planes[0][axis][lane]` and maxima `planes[1][axis][lane]`; minima `+inf`
+    /// and maxima `-inf` in unused lanes, so no ray enters them. One array, so the traversal
+    /// takes a ray's near and far planes by index (the ray's direction signs), with no
+    /// select per axis and node.
+    pub planes: [[[f32; WIDTH]; 3]; 2],
     /// An inner child's node index, or a leaf's first entry in the primitive order.
     pub child: [u32; WIDTH],
     /// A leaf's primitive count, `u32::MAX` for an inner child, 0 for an unused lane; a
@@ -61,8 +62,7 @@ pub struct WideNode {
 
 impl WideNode {
     pub(super) const EMPTY: Self = Self {
-        lo: [[f32::INFINITY; WIDTH]; 3],
-        hi: [[f32::NEG_INFINITY; WIDTH]; 3],
+        planes: [[[f32::INFINITY; WIDTH]; 3], [[f32::NEG_INFINITY; WIDTH]; 3]],
         child: [0; WIDTH],
         count: [0; WIDTH],
     };
@@ -71,8 +71,8 @@ impl WideNode {
     #[must_use]
     pub fn lane_bounds(&self, i: usize) -> Bounds3 {
         Bounds3 {
-            min: [self.lo[0][i], self.lo[1][i], self.lo[2][i]].into(),
-            max: [self.hi[0][i], self.hi[1][i], self.hi[2][i]].into(),
+            min: self.planes[0].map(|axis| axis[i]).into(),
+            max: self.planes[1].map(|axis| axis[i]).into(),
         }
     }
 }
@@ -125,11 +125,9 @@ impl RayBoxes {
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
         for a in 0..3 {
-            let (near_plane, far_plane) = if self.neg[a] {
-                (&node.hi[a], &node.lo[a])
-            } else {
-                (&node.lo[a], &node.hi[a])
-            };
+            // The maxima are nearer than the minima along a negative direction.
+            let near_plane = &node.planes[usize::from(self.neg[a])][a];
+            let far_plane = &node.planes[usize::from(!self.neg[a])][a];
             for i in 0..WIDTH {
                 let tn = (near_plane[i] - self.o[a]) * self.inv_d[a];
                 let tf = (far_plane[i] - self.o[a]) * self.inv_d[a] * scale;
@@ -903,8 +901,8 @@ mod tests {
                     max: a.max(b),
                 };
                 for ax in 0..3 {
-                    node.lo[ax][i] = bx.min[ax];
-                    node.hi[ax][i] = bx.max[ax];
+                    node.planes[0][ax][i] = bx.min[ax];
+                    node.planes[1][ax][i] = bx.max[ax];
                 }
                 boxes.push(bx);
             }

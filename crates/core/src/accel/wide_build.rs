@@ -279,8 +279,8 @@ fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Cos
     for (i, (lane, _)) in lanes[..len].iter().enumerate() {
         let b = lane.bounds.bounds();
         for a in 0..3 {
-            wide.lo[a][i] = b.min[a];
-            wide.hi[a][i] = b.max[a];
+            wide.planes[0][a][i] = b.min[a];
+            wide.planes[1][a][i] = b.max[a];
         }
         wide.child[i] = lane.start as u32;
         wide.count[i] = if lane.split.is_some() { INNER } else { lane.len as u32 };
