@@ -11,7 +11,7 @@
 //! and barycentrics (the tests compare bit for bit). Closest-hit semantics are kept too:
 //! the range check against the shrinking `t_max` is redone lane by lane in leaf order.
 
-use crate::math::{gamma, Ray, Vec3};
+use crate::math::{gamma, Ray, Vec3, Vec4};
 
 /// Triangles per block.
 pub const LANES: usize = 4;
@@ -184,11 +184,15 @@ pub fn test(block: &TriBlock, r: &RayTriangles, t_max: f32) -> Candidates {
         map4(|i| difference_of_products(x[2][i], y[0][i], y[2][i], x[0][i])),
         map4(|i| difference_of_products(x[0][i], y[1][i], y[0][i], x[1][i])),
     ];
-    let zero: [bool; LANES] = std::array::from_fn(|i| (e[0][i] == 0.0) | (e[1][i] == 0.0) | (e[2][i] == 0.0));
-    if zero.iter().any(|&z| z) {
+    // Only lanes holding a triangle of non-zero area: an unused lane's vertices are all zero,
+    // so its edge functions are exactly zero, and redoing them cost a partly filled block
+    // (most of a small scene's) a fifth of its test.
+    let [e0, e1, e2] = e.map(Vec4::from_array);
+    let zero = (e0.cmpeq(Vec4::ZERO) | e1.cmpeq(Vec4::ZERO) | e2.cmpeq(Vec4::ZERO)).bitmask() & block.mask;
+    if zero != 0 {
         // Rare: an edge function is exactly zero; redo it in double precision.
         let f = |a: f32, b: f32, c: f32, d: f32| (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32;
-        for i in (0..LANES).filter(|&i| zero[i]) {
+        for i in (0..LANES).filter(|&i| zero >> i & 1 != 0) {
             e[0][i] = f(x[1][i], y[2][i], y[1][i], x[2][i]);
             e[1][i] = f(x[2][i], y[0][i], y[2][i], x[0][i]);
             e[2][i] = f(x[0][i], y[1][i], y[0][i], x[1][i]);
@@ -196,14 +200,11 @@ pub fn test(block: &TriBlock, r: &RayTriangles, t_max: f32) -> Candidates {
     }
     // Most rays miss every triangle of a block: stop before the distance when no lane is
     // inside its three edges.
-    let mut inside = 0;
-    for i in 0..LANES {
-        let (e0, e1, e2) = (e[0][i], e[1][i], e[2][i]);
-        // Non-short-circuit operators, so the lanes stay branch-free.
-        let outside = ((e0 < 0.0) | (e1 < 0.0) | (e2 < 0.0)) & ((e0 > 0.0) | (e1 > 0.0) | (e2 > 0.0));
-        inside |= u32::from(!outside) << i;
-    }
-    inside &= block.mask;
+    // (As lane masks: per-lane comparisons into a bit mask did not vectorise.)
+    let [e0, e1, e2] = e.map(Vec4::from_array);
+    let negative = e0.cmplt(Vec4::ZERO) | e1.cmplt(Vec4::ZERO) | e2.cmplt(Vec4::ZERO);
+    let positive = e0.cmpgt(Vec4::ZERO) | e1.cmpgt(Vec4::ZERO) | e2.cmpgt(Vec4::ZERO);
+    let inside = !(negative & positive).bitmask() & block.mask;
     if inside == 0 {
         return Candidates {
             mask: 0,
@@ -223,20 +224,22 @@ pub fn test(block: &TriBlock, r: &RayTriangles, t_max: f32) -> Candidates {
     let max_xt = map4(|i| abs(&x, i));
     let max_yt = map4(|i| abs(&y, i));
     let max_e = map4(|i| abs(&e, i));
-    let mut mask = 0;
-    for i in 0..LANES {
-        let inv_det = 1.0 / det[i];
-        let t = t_scaled[i] * inv_det;
-        let delta_z = gamma(3) * max_zt[i];
-        let delta_x = gamma(5) * (max_xt[i] + max_zt[i]);
-        let delta_y = gamma(5) * (max_yt[i] + max_zt[i]);
-        let delta_e = 2.0 * (gamma(2) * max_xt[i] * max_yt[i] + delta_y * max_xt[i] + delta_x * max_yt[i]);
-        let delta_t =
-            3.0 * (gamma(3) * max_e[i] * max_zt[i] + delta_e * max_zt[i] + delta_z * max_e[i]) * inv_det.abs();
-        let hit =
-            (det[i] != 0.0) & in_range(det[i], t_scaled[i], t_max) & !t.is_nan() & ((t > delta_t) | delta_t.is_nan());
-        mask |= u32::from(hit) << i;
-    }
+    // The scalar test's last checks, in four lanes at once (the same operations in the
+    // same order; a comparison with a NaN is false, `!=` true, as in scalar code).
+    let [max_zt, max_xt, max_yt, max_e] = [max_zt, max_xt, max_yt, max_e].map(Vec4::from_array);
+    let (det4, t4) = (Vec4::from_array(det), Vec4::from_array(t_scaled));
+    let inv_det = Vec4::ONE / det4;
+    let t = t4 * inv_det;
+    let delta_z = gamma(3) * max_zt;
+    let delta_x = gamma(5) * (max_xt + max_zt);
+    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let delta_t = 3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+    let m = t_max * det4;
+    let out_of_range = det4.cmplt(Vec4::ZERO) & (t4.cmpge(Vec4::ZERO) | t4.cmplt(m))
+        | det4.cmpgt(Vec4::ZERO) & (t4.cmple(Vec4::ZERO) | t4.cmpgt(m));
+    let hit = det4.cmpne(Vec4::ZERO) & t.cmpeq(t) & (t.cmpgt(delta_t) | delta_t.cmpne(delta_t));
+    let mask = hit.bitmask() & !out_of_range.bitmask();
     Candidates {
         mask: mask & inside,
         e,
