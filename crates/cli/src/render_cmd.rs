@@ -164,9 +164,10 @@ fn print_summary(out: &RenderOutput, w: u32, h: u32, spp: u32, output: &Path) {
     let samples = s.paths as f64;
     let rays = (s.trace.rays + s.trace.shadow_rays) as f64;
     eprintln!(
-        "{}: {w}x{h}, {spp} spp in {secs:.2} s on {} threads: {:.2} M samples/s, {:.2} M paths/s, {:.2} M rays/s{}",
+        "{}: {w}x{h}, {spp} spp in {secs:.2} s on {} thread{}: {:.2} M samples/s, {:.2} M paths/s, {:.2} M rays/s{}",
         output.display(),
         s.threads,
+        if s.threads == 1 { "" } else { "s" },
         samples / secs / 1e6,
         samples / secs / 1e6,
         rays / secs / 1e6,
