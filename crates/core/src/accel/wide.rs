@@ -240,6 +240,36 @@ impl WideBvh {
         &self.prim_indices
     }
 
+    /// Bytes the tree holds: its nodes, leaf triangle blocks and primitive order.
+    #[must_use]
+    pub fn memory_bytes(&self) -> u64 {
+        (std::mem::size_of_val(&self.nodes[..])
+            + std::mem::size_of_val(&self.blocks[..])
+            + std::mem::size_of_val(&self.prim_indices[..])) as u64
+    }
+
+    /// An estimate of the bytes a tree over `primitives` takes at the peak of its build, with
+    /// triangle blocks attached, for memory limits checked before anything is built: the
+    /// 32-byte build primitives and the 4-byte primitive order, plus nodes and blocks at
+    /// allowances above what was measured, per primitive. Trees of 65,536 primitives or more
+    /// (block costs, fuller leaves): 0.13 nodes and 0.28 blocks on `bench/rays.sh`'s 1M-triangle mesh,
+    /// allowed 0.2 and 0.4, the nodes twice over for the copies of the parallel build.
+    /// Smaller trees (pbrt's costs: leaves of one primitive, mostly): a block per primitive
+    /// and 0.4 nodes.
+    /// The `memory_estimates_cover_built_trees` test holds built trees to it.
+    #[must_use]
+    pub fn estimated_peak_bytes(primitives: u64) -> u64 {
+        let (node, block) = (size_of::<WideNode>() as f64, size_of::<TriBlock>() as f64);
+        let per_primitive = if primitives >= wide_build::BLOCK_COSTS_FROM as u64 {
+            2.0 * 0.2 * node + 0.4 * block
+        } else {
+            2.0 * 0.4 * node + block
+        };
+        let fixed = (size_of::<wide_build::BuildPrim>() + size_of::<u32>()) as f64;
+        // Saturating: a float beyond u64::MAX converts to u64::MAX.
+        ((fixed + per_primitive) * primitives as f64).ceil() as u64
+    }
+
     /// Traversal stack entries a query on this tree can need (more than 64 puts the stack
     /// on the heap; see [`INLINE_STACK`]).
     #[must_use]
