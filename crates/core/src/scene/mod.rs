@@ -182,12 +182,16 @@ impl Scene {
     /// vertex; other materials skip that work.
     pub fn bsdf(&self, material: u32, si: &SurfaceInteraction) -> Option<Bsdf> {
         let m = self.resolve_material(material, si);
-        let bsdf = m.bsdf(si, &self.texture_context(m, si))?;
-        // A Mitsuba normal or bump map shadows the light side by its tilt.
-        Some(match si.unmapped_ns {
-            Some(before) => bsdf.with_shadowing(crate::bsdf::BumpShadowing::new(before, si.ns)),
-            None => bsdf,
-        })
+        let ctx = self.texture_context(m, si);
+        match si.unmapped_ns {
+            // A Mitsuba normal or bump map shadows the light side by its tilt.
+            Some(before) => m
+                .bsdf(si, &ctx)
+                .map(|bsdf| bsdf.with_shadowing(crate::bsdf::BumpShadowing::new(before, si.ns))),
+            // Returned as made, so it is built in the caller's slot rather than copied there
+            // (the 152-byte copy was a `memmove` call at every path vertex).
+            None => m.bsdf(si, &ctx),
+        }
     }
 
     /// The texture context of `m` at `si`: with the pixel footprint when `m` is textured.
