@@ -6,22 +6,13 @@ use std::sync::Arc;
 
 use mcrender_core::accel::WideBvh;
 use mcrender_core::math::Vec3;
+use mcrender_core::sampling::Pcg32;
 use mcrender_core::shape::{Triangle, TriangleMesh};
-
-/// Uniform floats in [0, 1) from a xorshift generator.
-fn uniform(mut state: u32) -> impl FnMut() -> f32 {
-    move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        (state >> 8) as f32 / (1u32 << 24) as f32
-    }
-}
 
 /// `n` small triangles scattered in a cube.
 fn soup(n: usize) -> Vec<[Vec3; 3]> {
-    let mut r = uniform(12345);
-    let mut p = |s: f32| Vec3::new(r(), r(), r()) * s;
+    let mut rng = Pcg32::new(1, 12345);
+    let mut p = |s: f32| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * s;
     (0..n)
         .map(|_| {
             let c = p(100.0);
@@ -32,8 +23,8 @@ fn soup(n: usize) -> Vec<[Vec3; 3]> {
 
 /// A `k` x `k` height field of `2 k^2` triangles sharing vertices.
 fn grid(k: usize) -> Vec<[Vec3; 3]> {
-    let mut r = uniform(777);
-    let heights: Vec<f32> = (0..(k + 1) * (k + 1)).map(|_| r()).collect();
+    let mut rng = Pcg32::new(2, 777);
+    let heights: Vec<f32> = (0..(k + 1) * (k + 1)).map(|_| rng.next_f32()).collect();
     let at = |i: usize, j: usize| Vec3::new(i as f32, heights[i * (k + 1) + j], j as f32);
     let mut tris = Vec::with_capacity(2 * k * k);
     for i in 0..k {
@@ -45,8 +36,8 @@ fn grid(k: usize) -> Vec<[Vec3; 3]> {
     tris
 }
 
-/// The bytes of the tree over `tris` with its blocks attached, plus its 32-byte build
-/// primitives (freed after the build, but part of its peak).
+/// The bytes of the tree over `tris` with its blocks attached, plus its build primitives
+/// (freed after the build, but part of its peak).
 fn built_bytes(tris: &[[Vec3; 3]]) -> u64 {
     let mesh = Arc::new(TriangleMesh {
         positions: tris.iter().flatten().copied().collect(),
@@ -57,7 +48,7 @@ fn built_bytes(tris: &[[Vec3; 3]]) -> u64 {
     let mut bvh = WideBvh::build_with(triangles.len(), |i| triangles[i].bounds());
     bvh.attach_triangles(|i| Some(triangles[i as usize].positions()));
     assert!(bvh.triangle_blocks() > 0, "no leaf blocks were made");
-    bvh.memory_bytes() + 32 * tris.len() as u64
+    bvh.memory_bytes() + WideBvh::BUILD_BYTES_PER_PRIMITIVE * tris.len() as u64
 }
 
 #[test]

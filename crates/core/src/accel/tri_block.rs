@@ -200,7 +200,8 @@ pub fn test(block: &TriBlock, r: &RayTriangles, t_max: f32) -> Candidates {
     }
     // Most rays miss every triangle of a block: stop before the distance when no lane is
     // inside its three edges.
-    // (As lane masks: per-lane comparisons into a bit mask did not vectorise.)
+    // (As lane masks: per-lane comparisons into a bit mask did not vectorise. Loaded again:
+    // the redo above may have changed `e`.)
     let [e0, e1, e2] = e.map(Vec4::from_array);
     let negative = e0.cmplt(Vec4::ZERO) | e1.cmplt(Vec4::ZERO) | e2.cmplt(Vec4::ZERO);
     let positive = e0.cmpgt(Vec4::ZERO) | e1.cmpgt(Vec4::ZERO) | e2.cmpgt(Vec4::ZERO);

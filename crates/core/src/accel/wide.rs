@@ -248,6 +248,10 @@ impl WideBvh {
             + std::mem::size_of_val(&self.prim_indices[..])) as u64
     }
 
+    /// Bytes of one primitive's record during the build (freed when the tree is made, but part
+    /// of the build's peak, [`Self::estimated_peak_bytes`]).
+    pub const BUILD_BYTES_PER_PRIMITIVE: u64 = size_of::<wide_build::BuildPrim>() as u64;
+
     /// An estimate of the bytes a tree over `primitives` takes at the peak of its build, with
     /// triangle blocks attached, for memory limits checked before anything is built: the
     /// 32-byte build primitives and the 4-byte primitive order, plus nodes and blocks at
@@ -265,7 +269,7 @@ impl WideBvh {
         } else {
             2.0 * 0.4 * node + block
         };
-        let fixed = (size_of::<wide_build::BuildPrim>() + size_of::<u32>()) as f64;
+        let fixed = (Self::BUILD_BYTES_PER_PRIMITIVE + size_of::<u32>() as u64) as f64;
         // Saturating: a float beyond u64::MAX converts to u64::MAX.
         ((fixed + per_primitive) * primitives as f64).ceil() as u64
     }
