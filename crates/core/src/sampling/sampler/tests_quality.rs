@@ -242,3 +242,25 @@ fn sobol_and_stratified_beat_independent_in_later_dimensions() {
     eprintln!("4-D RMSE: independent {independent:.2e}, stratified {stratified:.2e}, sobol {sobol:.2e}");
     assert!(stratified < 0.5 * independent && sobol < 0.5 * independent);
 }
+
+/// The per-pixel cache of the Sobol' points' high digits gives the values a fresh sampler
+/// gives, when pixels alternate and when a pixel's shuffled index crosses into another
+/// block of 256 (where the cached digits change), in the table's dimensions and the padded ones after them.
+#[test]
+fn sobol_cache_matches_a_fresh_sampler() {
+    let dims = SOBOL_DIMENSIONS + 6;
+    let values = |s: &mut Sampler, pixel: UVec2, index: u32| {
+        s.start_pixel_sample(pixel, index);
+        (0..dims).map(|_| s.get_1d()).collect::<Vec<_>>()
+    };
+    let (a, b) = (UVec2::new(3, 5), UVec2::new(4, 5));
+    let mut reused = make(SamplerKind::OwenSobol, 1024, 7);
+    for index in 0..600 {
+        // Pixel `a` also runs through consecutive samples, where only the index changes.
+        let pixels: &[UVec2] = if index % 5 == 0 { &[a, b, a] } else { &[a] };
+        for &pixel in pixels {
+            let fresh = values(&mut make(SamplerKind::OwenSobol, 1024, 7), pixel, index);
+            assert_eq!(values(&mut reused, pixel, index), fresh, "{pixel} sample {index}");
+        }
+    }
+}
