@@ -21,6 +21,11 @@ pub struct Triangle {
     /// zero-area triangle, which no ray hits): made once here rather than at every hit,
     /// where its square root and division were on the critical path of `geometry_at`.
     n: Vec3,
+    /// The unit shading normal when the mesh's three vertex normals of this triangle are
+    /// equal (a flat face, as every face of the Cornell box): interpolating them gives that
+    /// normal again up to rounding, so `geometry_at` takes it from here instead of reading
+    /// the mesh's normals and normalising their blend at every hit.
+    flat_ns: Option<Vec3>,
 }
 
 /// `a*b - c*d` with one rounding (Kahan's algorithm via fused multiply-add).
@@ -45,7 +50,17 @@ impl Triangle {
         let [a, b, c] = mesh.vertices(index);
         let p = [mesh.positions[a], mesh.positions[b], mesh.positions[c]];
         let n = (p[0] - p[2]).cross(p[1] - p[2]).normalize();
-        Self { mesh, index, p, n }
+        let flat_ns = mesh.normals.as_ref().and_then(|normals| {
+            let (na, nb, nc) = (normals[a], normals[b], normals[c]);
+            (na == nb && nb == nc).then(|| na.try_normalize()).flatten()
+        });
+        Self {
+            mesh,
+            index,
+            p,
+            n,
+            flat_ns,
+        }
     }
 
     /// Vertex positions (world space).
@@ -165,8 +180,15 @@ impl Triangle {
         };
         let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
         let mut n = self.n;
-        let ns = match &self.mesh.normals {
-            Some(normals) => {
+        let ns = match (&self.mesh.normals, self.flat_ns) {
+            (_, Some(ns)) => {
+                // The geometric normal follows the shading normal's side, as below.
+                if n.dot(ns) < 0.0 {
+                    n = -n;
+                }
+                ns
+            }
+            (Some(normals), None) => {
                 let [i0, i1, i2] = vertices();
                 let ns = b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2];
                 // The geometric normal follows the shading normal's side when one is given.
@@ -185,7 +207,7 @@ impl Triangle {
                     }
                 }
             }
-            None => {
+            (None, None) => {
                 if self.mesh.flip_normals {
                     n = -n;
                 }
@@ -294,10 +316,14 @@ mod tests {
     /// The triangle (0,0,0), (1,0,0), (0,1,0) with normals +z and uvs along x and y, so
     /// that dp/du is +x; `tangents` per vertex if given.
     fn triangle(tangents: Option<Vec<Vec4>>) -> Triangle {
+        triangle_with_normals(Some(vec![Vec3::Z; 3]), tangents)
+    }
+
+    fn triangle_with_normals(normals: Option<Vec<Vec3>>, tangents: Option<Vec<Vec4>>) -> Triangle {
         let mesh = TriangleMesh {
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
             indices: vec![0, 1, 2],
-            normals: Some(vec![Vec3::Z; 3]),
+            normals,
             uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]),
             tangents,
             flip_normals: false,
@@ -343,10 +369,37 @@ mod tests {
         let si = hit_at(&triangle(Some(along_n)), 0.2, 0.3);
         assert!((si.dpdu - Vec3::X).length() < 1e-6, "{}", si.dpdu);
         assert_eq!(si.bitangent_sign, 1.0);
-        let mut t = triangle(Some(vec![Vec4::new(0.0, 1.0, 0.0, -1.0); 3]));
-        Arc::get_mut(&mut t.mesh).unwrap().normals = None;
+        let t = triangle_with_normals(None, Some(vec![Vec4::new(0.0, 1.0, 0.0, -1.0); 3]));
         let si = hit_at(&t, 0.2, 0.3);
         assert!((si.dpdu - Vec3::X).length() < 1e-6, "{}", si.dpdu);
         assert_eq!(si.bitangent_sign, 1.0);
+    }
+
+    /// Equal vertex normals (a flat face, unnormalised and facing away from the winding's
+    /// normal) give the same shading and geometric normals as interpolated unequal ones
+    /// that blend to the same direction, and the geometric normal follows their side.
+    #[test]
+    fn flat_vertex_normals_match_interpolated_ones() {
+        let down = Vec3::new(0.0, 0.0, -2.0);
+        let flat = triangle_with_normals(Some(vec![down; 3]), None);
+        assert!(flat.flat_ns.is_some());
+        // Tilted normals whose blend at (1/3, 1/3) is -z: their tilts cancel there.
+        let tilted = vec![
+            Vec3::new(0.2, 0.1, -1.0),
+            Vec3::new(-0.1, 0.1, -1.0),
+            Vec3::new(-0.1, -0.2, -1.0),
+        ];
+        let blended = triangle_with_normals(Some(tilted), None);
+        assert!(blended.flat_ns.is_none());
+        let (x, y) = (1.0 / 3.0, 1.0 / 3.0);
+        let (a, b) = (hit_at(&flat, x, y), hit_at(&blended, x, y));
+        assert!((a.ns - Vec3::NEG_Z).length() < 1e-6, "{}", a.ns);
+        assert!((a.ns - b.ns).length() < 1e-5, "{} vs {}", a.ns, b.ns);
+        assert_eq!(a.intr.n, Vec3::NEG_Z);
+        assert_eq!(a.intr.n, b.intr.n);
+        // Zero normals cannot be normalised: the geometric normal is used, as before.
+        let zero = triangle_with_normals(Some(vec![Vec3::ZERO; 3]), None);
+        assert!(zero.flat_ns.is_none());
+        assert_eq!(hit_at(&zero, x, y).ns, Vec3::Z);
     }
 }
