@@ -104,7 +104,9 @@ impl LightPathIntegrator {
             let si = hit.si;
 
             // Get the BSDF; pass through surfaces without one; stop at the depth limit.
-            let Some(bsdf) = scene.bsdf(hit.primitive.material, &si) else {
+            // Borrowed where it was made (moving the BSDF out of the `Option` copies it).
+            let bsdf = scene.bsdf(hit.primitive.material, &si);
+            let Some(bsdf) = bsdf.as_ref() else {
                 ray = si.spawn_ray(ray.d);
                 continue;
             };

@@ -76,7 +76,9 @@ fn trace_photon(
             break;
         };
         let si = hit.si;
-        let Some(bsdf) = scene.bsdf(hit.primitive.material, &si) else {
+        // Borrowed where it was made (moving the BSDF out of the `Option` copies it).
+        let bsdf = scene.bsdf(hit.primitive.material, &si);
+        let Some(bsdf) = bsdf.as_ref() else {
             ray = si.spawn_ray(ray.d);
             continue;
         };
