@@ -179,35 +179,23 @@ impl Triangle {
             None => [Vec2::ZERO, Vec2::X, Vec2::ONE],
         };
         let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
+        // The shading normal: a flat face's, made once, or the blend of the vertex normals;
+        // none where the mesh has no normals or their blend is zero.
+        let shading = self.flat_ns.or_else(|| {
+            let normals = self.mesh.normals.as_ref()?;
+            let [i0, i1, i2] = vertices();
+            (b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2]).try_normalize()
+        });
         let mut n = self.n;
-        let ns = match (&self.mesh.normals, self.flat_ns) {
-            (_, Some(ns)) => {
-                // The geometric normal follows the shading normal's side, as below.
+        let ns = match shading {
+            // The geometric normal follows the shading normal's side when one is given.
+            Some(ns) => {
                 if n.dot(ns) < 0.0 {
                     n = -n;
                 }
                 ns
             }
-            (Some(normals), None) => {
-                let [i0, i1, i2] = vertices();
-                let ns = b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2];
-                // The geometric normal follows the shading normal's side when one is given.
-                match ns.try_normalize() {
-                    Some(ns) => {
-                        if n.dot(ns) < 0.0 {
-                            n = -n;
-                        }
-                        ns
-                    }
-                    None => {
-                        if self.mesh.flip_normals {
-                            n = -n;
-                        }
-                        n
-                    }
-                }
-            }
-            (None, None) => {
+            None => {
                 if self.mesh.flip_normals {
                     n = -n;
                 }

@@ -184,8 +184,15 @@ const fn sobol_nibbles() -> [[[u32; 16]; 8]; SOBOL_DIMENSIONS] {
 #[inline]
 #[must_use]
 pub fn sobol_u32_reversed(index: u32, dim: usize) -> u32 {
+    high_digits_reversed(index, dim) ^ low_digits_reversed(index, dim)
+}
+
+/// The share of index bits 0..8 in [`sobol_u32_reversed`]`(index, dim)` (the XOR of the
+/// two low nibbles' table entries).
+#[inline]
+fn low_digits_reversed(index: u32, dim: usize) -> u32 {
     let table = &SOBOL_NIBBLES[dim];
-    high_digits_reversed(index, dim) ^ table[0][index as usize & 15] ^ table[1][(index >> 4) as usize & 15]
+    table[0][index as usize & 15] ^ table[1][(index >> 4) as usize & 15]
 }
 
 /// The share of index bits 8 and up in [`sobol_u32_reversed`]`(index, dim)` (the XOR of the
@@ -228,6 +235,9 @@ pub struct OwenSobolSampler {
     high: [u32; SOBOL_DIMENSIONS],
     high_valid: u64,
 }
+
+// `high_valid` has one bit per table dimension.
+const _: () = assert!(SOBOL_DIMENSIONS <= u64::BITS as usize);
 
 impl OwenSobolSampler {
     /// A sampler taking `samples_per_pixel` samples in each pixel (powers of two keep the
@@ -282,9 +292,7 @@ impl OwenSobolSampler {
                 self.high[d] = high_digits_reversed(self.sobol_index, d);
                 self.high_valid |= 1 << d;
             }
-            let index = self.sobol_index as usize;
-            let table = &SOBOL_NIBBLES[d];
-            let x = self.high[d] ^ table[0][index & 15] ^ table[1][(index >> 4) & 15];
+            let x = self.high[d] ^ low_digits_reversed(self.sobol_index, d);
             debug_assert_eq!(x, sobol_u32_reversed(self.sobol_index, d));
             x
         } else {
