@@ -35,16 +35,21 @@ echo "(each figure the best of $REPEAT passes within a run and of 2 alternating 
 rows="$OUT/rows.txt"
 : > "$rows"
 for threads in 1 2; do
-    for set in camera incoherent shadow; do
+    # A row is a ray set, optionally with mcrender tracing it in packets of eight
+    # (`--packets`; the Embree side traces one ray at a time in every row).
+    for row in camera camera+packets incoherent shadow; do
+        set="${row%+packets}"
+        packets=()
+        [ "$row" != "$set" ] && packets=(--packets)
         query=closest
         [ "$set" = shadow ] && query=any
         for round in 1 2; do
             "$MC" bench-rays "$DATA/mesh.ply" "$DATA/$set.bin" --query "$query" --threads "$threads" \
-                --repeat "$REPEAT" --hits "$OUT/mc.hits" > "$OUT/mc-$round.txt"
+                --repeat "$REPEAT" --hits "$OUT/mc.hits" "${packets[@]}" > "$OUT/mc-$round.txt"
             "$PY" bench/rays_embree.py "$DATA/mesh.ply" "$DATA/$set.bin" --query "$query" --threads "$threads" \
                 --repeat "$REPEAT" --hits "$OUT/em.hits" > "$OUT/em-$round.txt"
         done
-        "$PY" - "$threads" "$set" "$query" "$OUT" >> "$rows" <<'PY'
+        "$PY" - "$threads" "$row" "$query" "$OUT" >> "$rows" <<'PY'
 import json, re, sys
 import numpy as np
 threads, set_, query, out = sys.argv[1:5]
@@ -69,10 +74,12 @@ print(f"{threads}\t{set_}\t{query}\t{mc_rate:.3f}\t{em_rate:.3f}\t{mc_rate / em_
 PY
     done
 done
-printf '%-8s%-12s%-9s%14s%14s%10s%16s%16s%16s\n' threads "ray set" query "mcrender M/s" "Embree M/s" ratio "disagreements" "mc build Mt/s" "Embree Mt/s"
+printf '%-8s%-17s%-9s%14s%14s%10s%16s%16s%16s\n' threads "ray set" query "mcrender M/s" "Embree M/s" ratio "disagreements" "mc build Mt/s" "Embree Mt/s"
 while IFS=$'\t' read -r th set q mc em ratio dis n mb eb; do
-    printf '%-8s%-12s%-9s%14s%14s%10s%16s%16s%16s\n' "$th" "$set" "$q" "$mc" "$em" "$ratio" "$dis / $n" "$mb" "$eb"
+    printf '%-8s%-17s%-9s%14s%14s%10s%16s%16s%16s\n' "$th" "$set" "$q" "$mc" "$em" "$ratio" "$dis / $n" "$mb" "$eb"
 done < "$rows"
-echo "ratio = mcrender / Embree (above 1: mcrender faster). Embree's build always uses all cores (TBB) and"
+echo "ratio = mcrender / Embree (above 1: mcrender faster). camera+packets: mcrender traces the camera rays"
+echo "in packets of eight consecutive rays of the file, Embree one at a time (embreex has no packet query)."
+echo "Embree's build always uses all cores (TBB) and"
 echo "includes a first one-ray query; with 2 threads Embree traces from 2 processes (embreex holds the GIL)."
 echo "The machine may be shared: compare ratios from one run, not seconds across runs."

@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use mcrender_core::accel::{Isa, WideBvh};
+use mcrender_core::accel::{Isa, WideBvh, PACKET};
 use mcrender_core::math::{Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 use mcrender_formats::ply::read_ply;
@@ -55,6 +55,10 @@ pub struct BenchRaysArgs {
     /// Write the hit distance of every ray (float32, little endian) to this file.
     #[arg(long, value_name = "OUT.bin")]
     pub hits: Option<PathBuf>,
+    /// Trace consecutive rays of the file in packets of eight, together (the BVH's packet
+    /// queries); by default each ray is traced alone.
+    #[arg(long)]
+    pub packets: bool,
     /// Instruction set of the wide BVH's queries (default: the best this CPU has).
     #[arg(long, value_enum)]
     pub isa: Option<IsaArg>,
@@ -120,8 +124,14 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
             hits.par_chunks_mut(CHUNK)
                 .zip(rays.par_chunks(CHUNK))
                 .for_each(|(out, rays)| {
-                    for (h, (ray, t_max)) in out.iter_mut().zip(rays) {
-                        *h = trace(&bvh, &triangles, args.query, ray, *t_max);
+                    if args.packets {
+                        for (h, rays) in out.chunks_mut(PACKET).zip(rays.chunks(PACKET)) {
+                            trace_packet(&bvh, &triangles, args.query, rays, h);
+                        }
+                    } else {
+                        for (h, (ray, t_max)) in out.iter_mut().zip(rays) {
+                            *h = trace(&bvh, &triangles, args.query, ray, *t_max);
+                        }
                     }
                 });
         });
@@ -174,6 +184,36 @@ fn trace(bvh: &WideBvh, triangles: &[Triangle], query: Query, ray: &Ray, t_max: 
                 0.0
             } else {
                 f32::INFINITY
+            }
+        }
+    }
+}
+
+/// Hit distances of up to [`PACKET`] rays traced together, into `out` (as [`trace`]).
+fn trace_packet(bvh: &WideBvh, triangles: &[Triangle], query: Query, rays: &[(Ray, f32)], out: &mut [f32]) {
+    let placeholder = Ray::new(Vec3::ZERO, Vec3::Z);
+    let packet: [Ray; PACKET] = std::array::from_fn(|r| rays.get(r).map_or(placeholder, |(ray, _)| *ray));
+    let t_max: [f32; PACKET] = std::array::from_fn(|r| rays.get(r).map_or(0.0, |(_, t)| *t));
+    let active = (1u32 << rays.len()) - 1;
+    match query {
+        Query::Closest => {
+            let hits = bvh.closest_hit_triangles_packet(
+                &packet,
+                t_max,
+                active,
+                |_, i, r, t| triangles[i as usize].intersect(r, t).map(|h| (h.t, h.t)),
+                |_, _, h| h.t,
+            );
+            for (o, h) in out.iter_mut().zip(hits) {
+                *o = h.map_or(f32::INFINITY, |(_, t)| t);
+            }
+        }
+        Query::Any => {
+            let blocked = bvh.any_hit_triangles_packet(&packet, t_max, active, |_, i, r, t| {
+                triangles[i as usize].intersect(r, t).is_some()
+            });
+            for (r, o) in out.iter_mut().enumerate() {
+                *o = if blocked >> r & 1 != 0 { 0.0 } else { f32::INFINITY };
             }
         }
     }

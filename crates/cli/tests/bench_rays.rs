@@ -87,7 +87,7 @@ fn hits_agree_with_brute_force() {
     let mut rng = Lcg(7);
     let (positions, ply) = soup(&mut rng);
     std::fs::write(dir.path().join("mesh.ply"), ply).unwrap();
-    let rays = rays(&mut rng, 3000);
+    let rays = rays(&mut rng, 3001);
     write_rays(&dir.path().join("rays.bin"), &rays);
 
     // Brute force over triangles built from the same (decimal-printed, re-read) positions.
@@ -121,10 +121,17 @@ fn hits_agree_with_brute_force() {
     );
 
     // The tree in each instruction set (the best, and the portable kernels forced).
-    let mut configs = vec![vec![], vec!["--isa", "portable"]];
+    // Also in packets of eight consecutive rays (the last one partial: 3001 rays).
+    let mut configs = vec![
+        vec![],
+        vec!["--isa", "portable"],
+        vec!["--packets"],
+        vec!["--packets", "--isa", "portable"],
+    ];
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
         configs.push(vec!["--isa", "avx2"]);
+        configs.push(vec!["--packets", "--isa", "avx2"]);
     } else {
         eprintln!("NOT TESTED: --isa avx2 (this CPU has no AVX2 and FMA)");
     }

@@ -3,11 +3,12 @@
 //! also for soups with zero-area triangles, rays lying in the planes of boxes (axis-aligned
 //! triangles met edge-on) and NaN directions. The wide tree's precomputed leaf triangles
 //! (four-lane test) are checked in every instruction set against the one-at-a-time test, bit
-//! for bit, including `t_max` at, just below and just above the hit, and zero.
+//! for bit, including `t_max` at, just below and just above the hit, and zero; and packets
+//! of eight rays traced together give each ray the one-ray query's answers.
 
 use std::sync::Arc;
 
-use mcrender_core::accel::{Isa, WideBvh};
+use mcrender_core::accel::{Isa, WideBvh, PACKET};
 use mcrender_core::math::{Bounds3, Ray, Vec3};
 use mcrender_core::shape::{Shape, Triangle, TriangleMesh};
 use proptest::prelude::*;
@@ -102,6 +103,67 @@ fn check_blocks(trees: &[WideBvh], shapes: &[Shape], ray: &Ray, t_max: f32) -> R
     Ok(())
 }
 
+/// Packets of eight of `rays` (with every eighth ray left out of the active mask, and a
+/// last partial packet) give each ray the one-ray query's closest distance, bit for bit, a
+/// primitive that is hit there, and the one-ray any-hit answer.
+fn check_packets(trees: &[WideBvh], shapes: &[Shape], rays: &[(Ray, f32)]) -> Result<(), TestCaseError> {
+    let test = |i: u32, r: &Ray, t: f32| shapes[i as usize].intersect(r, t).map(|h| (h.t, h.t));
+    for w in trees {
+        for (k, group) in rays.chunks(PACKET).enumerate() {
+            let packet: [Ray; PACKET] = std::array::from_fn(|r| group.get(r).map_or(group[0].0, |g| g.0));
+            let t_max: [f32; PACKET] = std::array::from_fn(|r| group.get(r).map_or(0.0, |g| g.1));
+            let left_out = k % PACKET;
+            let active = ((1u32 << group.len()) - 1) & !(1 << left_out);
+            let closest =
+                w.closest_hit_triangles_packet(&packet, t_max, active, |_, i, r, t| test(i, r, t), |_, _, h| h.t);
+            let blocked = w.any_hit_triangles_packet(&packet, t_max, active, |_, i, r, t| {
+                shapes[i as usize].intersect(r, t).is_some()
+            });
+            for r in 0..PACKET {
+                let (ray, t) = (&packet[r], t_max[r]);
+                if active >> r & 1 == 0 {
+                    prop_assert!(
+                        closest[r].is_none() && blocked >> r & 1 == 0,
+                        "{:?}: inactive ray {} answered",
+                        w.isa(),
+                        r
+                    );
+                    continue;
+                }
+                let one = w.closest_hit_triangles(ray, t, test, |_, h| h.t);
+                prop_assert_eq!(
+                    one.map(|h| h.1.to_bits()),
+                    closest[r].map(|h| h.1.to_bits()),
+                    "{:?}: packet closest distance, ray {:?}, t_max {}",
+                    w.isa(),
+                    ray,
+                    t
+                );
+                if let Some((prim, t_hit)) = closest[r] {
+                    let again = shapes[prim as usize].intersect(ray, t).map(|h| h.t.to_bits());
+                    prop_assert_eq!(
+                        again,
+                        Some(t_hit.to_bits()),
+                        "{:?}: packet primitive {} is not hit there",
+                        w.isa(),
+                        prim
+                    );
+                }
+                let any = w.any_hit_triangles(ray, t, |i, r, t| shapes[i as usize].intersect(r, t).is_some());
+                prop_assert_eq!(
+                    any,
+                    blocked >> r & 1 != 0,
+                    "{:?}: packet any hit, ray {:?}, t_max {}",
+                    w.isa(),
+                    ray,
+                    t
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 64,
@@ -120,6 +182,7 @@ proptest! {
         let wide = WideBvh::build(&bounds);
         prop_assert_eq!(wide.check_invariants(&bounds), Ok(()));
         let trees = block_trees(&shapes, &bounds);
+        let mut traced = Vec::new();
         for (o, d, target, aimed) in rays {
             // Half the rays aim at a triangle's centroid, so they certainly hit something.
             let tri = &tris[target.index(tris.len())];
@@ -153,7 +216,10 @@ proptest! {
                 prop_assert_eq!(any_brute, any_wide);
             }
             check_blocks(&trees, &shapes, &ray, f32::INFINITY)?;
+            let half = brute.map_or(5.0, |b| b.1 * 0.5);
+            traced.extend([(ray, f32::INFINITY), (ray, half)]);
         }
+        check_packets(&[trees, vec![wide]].concat(), &shapes, &traced)?;
     }
 }
 
@@ -210,6 +276,7 @@ proptest! {
         let wide = WideBvh::build(&bounds);
         prop_assert_eq!(wide.check_invariants(&bounds), Ok(()));
         let trees = block_trees(&shapes, &bounds);
+        let mut traced = Vec::new();
         for (mut o, mut d, axis, kind, t_max, target) in rays {
             match kind {
                 5 | 6 => {
@@ -247,7 +314,9 @@ proptest! {
             let any_wide = wide.any_hit(&ray, t_max, |i, r, t| shapes[i as usize].intersect(r, t).is_some());
             prop_assert_eq!(any_brute, any_wide, "wide any hit, ray {:?}", ray);
             check_blocks(&trees, &shapes, &ray, t_max)?;
+            traced.push((ray, t_max));
         }
+        check_packets(&[trees, vec![wide]].concat(), &shapes, &traced)?;
     }
 }
 
@@ -303,6 +372,7 @@ fn deep_trees_traverse_with_a_heap_stack() {
         "the tree is not deep enough to test the heap stack: {}",
         wide.traversal_stack_size()
     );
+    let mut traced = Vec::new();
     for (i, tri) in tris.iter().enumerate().step_by(7) {
         let centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
         for o in [Vec3::new(-1.0, 0.1, 0.05), centroid + Vec3::new(0.0, 0.2, -3.0)] {
@@ -319,8 +389,49 @@ fn deep_trees_traverse_with_a_heap_stack() {
                 shapes[p as usize].intersect(r, t).is_some()
             });
             assert_eq!(blocked, brute.is_some(), "triangle {i}, origin {o}");
+            traced.push((ray, f32::INFINITY));
         }
     }
+    check_packets(&[block_trees(&shapes, &bounds), vec![wide]].concat(), &shapes, &traced).unwrap();
+}
+
+/// A tree large enough to prefetch and to use block costs (70,000 triangles of a wavy
+/// sheet): packets of camera-like and scattered rays agree with the one-ray queries.
+#[test]
+fn packets_on_a_large_tree() {
+    let n = 187;
+    let height = |x: usize, y: usize| (x as f32 * 0.37).sin() * (y as f32 * 0.23).cos();
+    let mut tris = Vec::new();
+    for y in 0..n {
+        for x in 0..n {
+            let p = |x: usize, y: usize| Vec3::new(x as f32, y as f32, height(x, y));
+            tris.push([p(x, y), p(x + 1, y), p(x, y + 1)]);
+            tris.push([p(x + 1, y), p(x + 1, y + 1), p(x, y + 1)]);
+        }
+    }
+    let shapes = shapes_of(&tris);
+    let bounds: Vec<Bounds3> = shapes.iter().map(Shape::bounds).collect();
+    let trees = block_trees(&shapes, &bounds);
+    assert!(trees[0].memory_bytes() > 1 << 20, "the tree is too small to prefetch");
+    let mut seed = 11u32;
+    let mut rnd = || {
+        seed = seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+        (seed >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let mut rays = Vec::new();
+    for k in 0..800 {
+        let ray = if k % 2 == 0 {
+            // From a camera above the sheet, scanline order.
+            let target = Vec3::new((k % 40) as f32 * 4.6, (k / 40) as f32 * 9.0, 0.0);
+            let o = Vec3::new(90.0, 90.0, 60.0);
+            Ray::new(o, target - o)
+        } else {
+            let o = Vec3::new(rnd() * 187.0, rnd() * 187.0, rnd() * 4.0 - 2.0);
+            Ray::new(o, Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5))
+        };
+        rays.push((ray, if k % 3 == 0 { 2.0 } else { f32::INFINITY }));
+    }
+    check_packets(&trees, &shapes, &rays).unwrap();
 }
 
 /// After `reorder_by_leaves` the leaves list the reordered primitives in storage order, and

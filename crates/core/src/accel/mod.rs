@@ -3,12 +3,14 @@
 //! triangles precomputed for testing four at a time ([`TriBlock`]) and the instruction set
 //! of the queries chosen at run time ([`Isa`]).
 
+mod packet;
 mod paged;
 mod simd;
 mod tri_block;
 mod wide;
 mod wide_build;
 
+pub use packet::PACKET;
 pub use simd::Isa;
 pub use tri_block::{TriBlock, TriangleHit};
 pub use wide::{WideBvh, WideNode, WIDTH};

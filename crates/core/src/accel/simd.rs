@@ -17,6 +17,7 @@
 
 #![allow(unsafe_code)]
 
+use super::packet::{any_hit_packet_impl, closest_hit_packet_impl, PACKET};
 use super::tri_block::TriangleHit;
 use super::wide::{any_hit_impl, closest_hit_impl, WideBvh};
 use crate::math::Ray;
@@ -113,6 +114,68 @@ fn closest_hit_avx2<H>(
 #[target_feature(enable = "avx2,fma")]
 fn any_hit_avx2(bvh: &WideBvh, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
     any_hit_impl(bvh, ray, t_max, test)
+}
+
+/// Closest hits of a packet with the tree's instruction set (see
+/// [`WideBvh::closest_hit_triangles_packet`]).
+#[inline]
+pub(super) fn closest_hit_packet<H>(
+    bvh: &WideBvh,
+    rays: &[Ray; PACKET],
+    t_max: [f32; PACKET],
+    active: u32,
+    test: impl FnMut(usize, u32, &Ray, f32) -> Option<(f32, H)>,
+    on_triangle: impl FnMut(usize, u32, TriangleHit) -> H,
+) -> [Option<(u32, H)>; PACKET] {
+    #[cfg(target_arch = "x86_64")]
+    if bvh.isa() == Isa::Avx2 {
+        // SAFETY: as in `closest_hit`: `Avx2` is set only on a CPU with AVX2 and FMA.
+        return unsafe { closest_hit_packet_avx2(bvh, rays, t_max, active, test, on_triangle) };
+    }
+    closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle)
+}
+
+/// Any hits of a packet with the tree's instruction set (see
+/// [`WideBvh::any_hit_triangles_packet`]).
+#[inline]
+pub(super) fn any_hit_packet(
+    bvh: &WideBvh,
+    rays: &[Ray; PACKET],
+    t_max: [f32; PACKET],
+    active: u32,
+    test: impl FnMut(usize, u32, &Ray, f32) -> bool,
+) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    if bvh.isa() == Isa::Avx2 {
+        // SAFETY: as in `closest_hit`: `Avx2` is set only on a CPU with AVX2 and FMA.
+        return unsafe { any_hit_packet_avx2(bvh, rays, t_max, active, test) };
+    }
+    any_hit_packet_impl(bvh, rays, t_max, active, test)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn closest_hit_packet_avx2<H>(
+    bvh: &WideBvh,
+    rays: &[Ray; PACKET],
+    t_max: [f32; PACKET],
+    active: u32,
+    test: impl FnMut(usize, u32, &Ray, f32) -> Option<(f32, H)>,
+    on_triangle: impl FnMut(usize, u32, TriangleHit) -> H,
+) -> [Option<(u32, H)>; PACKET] {
+    closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn any_hit_packet_avx2(
+    bvh: &WideBvh,
+    rays: &[Ray; PACKET],
+    t_max: [f32; PACKET],
+    active: u32,
+    test: impl FnMut(usize, u32, &Ray, f32) -> bool,
+) -> u32 {
+    any_hit_packet_impl(bvh, rays, t_max, active, test)
 }
 
 /// Ask the CPU to start loading the cache lines of `value` (a hint: no effect on results).

@@ -25,12 +25,12 @@ pub const WIDTH: usize = 4;
 /// `count` of an inner child.
 pub(super) const INNER: u32 = u32::MAX;
 /// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
-const BLOCK: u32 = 1 << 30;
+pub(super) const BLOCK: u32 = 1 << 30;
 /// Traversal stack entries held on the call stack; a tree that may need more (deeper than
 /// about 21 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
 /// because the array is zeroed on every query (a 295-entry one, enough for any tree, was
 /// 6.6% of a Cornell box render's time in `memset`).
-const INLINE_STACK: usize = 64;
+pub(super) const INLINE_STACK: usize = 64;
 /// The inline stack of a shallow tree (up to 5 inner levels).
 const SMALL_STACK: usize = 16;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
@@ -498,6 +498,18 @@ impl WideBvh {
         false
     }
 
+    /// What a query reads: the arrays, the root entry, the traversal stack size and whether
+    /// to prefetch (for the packet queries of [`super::packet`]).
+    #[inline(always)]
+    pub(super) fn query_parts(&self) -> (View<'_>, Option<(u32, u32)>, usize, bool) {
+        let view = View {
+            nodes: &self.nodes,
+            blocks: &self.blocks,
+            prim_indices: &self.prim_indices,
+        };
+        (view, self.root, self.stack_size, self.prefetch)
+    }
+
     /// Check the tree's invariants against the primitive bounds it was built from: every
     /// lane's box is exactly the union of what is below it, unused lanes are empty and come
     /// last, leaves hold 1 to 4 primitives, and every primitive sits in exactly one leaf.
@@ -602,16 +614,16 @@ trait Leaf {
 /// The arrays of a tree a query reads, borrowed once per query: a memory-mapped array's
 /// slice is checked as it is made ([`Paged`]'s `Deref`), which indexing the tree's fields
 /// directly did at every node and block (a branch on the kind of storage, a length check).
-struct View<'a> {
-    nodes: &'a [WideNode],
-    blocks: &'a [TriBlock],
-    prim_indices: &'a [u32],
+pub(super) struct View<'a> {
+    pub(super) nodes: &'a [WideNode],
+    pub(super) blocks: &'a [TriBlock],
+    pub(super) prim_indices: &'a [u32],
 }
 
 impl View<'_> {
     /// The primitive range `(start, count)` of a leaf entry.
     #[inline(always)]
-    fn leaf_range(&self, child: u32, count: u32) -> (usize, usize) {
+    pub(super) fn leaf_range(&self, child: u32, count: u32) -> (usize, usize) {
         if count & BLOCK != 0 {
             let b = &self.blocks[child as usize];
             (b.start as usize, b.count as usize)
@@ -623,12 +635,18 @@ impl View<'_> {
     /// Start loading what `entry` refers to: the node, or the leaf's triangle block.
     #[inline(always)]
     fn prefetch(&self, entry: Entry) {
-        if entry.count == INNER {
-            if let Some(node) = self.nodes.get(entry.child as usize) {
+        self.prefetch_child(entry.child, entry.count);
+    }
+
+    /// Start loading the node or leaf block of the lane entry `(child, count)`.
+    #[inline(always)]
+    pub(super) fn prefetch_child(&self, child: u32, count: u32) {
+        if count == INNER {
+            if let Some(node) = self.nodes.get(child as usize) {
                 simd::prefetch(node);
             }
-        } else if entry.count & BLOCK != 0 {
-            if let Some(block) = self.blocks.get(entry.child as usize) {
+        } else if count & BLOCK != 0 {
+            if let Some(block) = self.blocks.get(child as usize) {
                 simd::prefetch(block);
             }
         }
