@@ -15,8 +15,8 @@
 
 use glam::Vec4;
 
-use super::tri_block::{self, RayTriangles, TriangleHit};
-use super::wide::{View, WideBvh, WideNode, BLOCK, INLINE_STACK, INNER, WIDTH};
+use super::tri_block::{RayTriangles, TriangleHit};
+use super::wide::{View, WideBvh, WideNode, INLINE_STACK, INNER, SMALL_STACK, WIDTH};
 use crate::math::{gamma, Ray};
 
 /// Rays per packet.
@@ -27,9 +27,6 @@ type Lanes = [f32; PACKET];
 
 /// Bit `r` of a ray mask, lane by lane (for selects that vectorise).
 const LANE_BIT: [u32; PACKET] = [1, 2, 4, 8, 16, 32, 64, 128];
-
-/// Stack entries of a shallow tree's packet query (up to 5 inner levels).
-const SMALL_STACK: usize = 16;
 
 /// The per-ray constants of the box test, in lanes.
 struct PacketBoxes {
@@ -237,48 +234,39 @@ where
 {
     #[inline(always)]
     fn visit(&mut self, view: &View<'_>, r: usize, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
-        if count & BLOCK != 0 {
-            let block = &view.blocks[child as usize];
-            let c = tri_block::test(block, &self.rt[r], *t_max);
-            let mut mask = c.mask;
-            while mask != 0 {
-                let i = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if let Some(h) = c.hit(i, *t_max) {
-                    let prim = block.prims[i];
-                    *t_max = h.t;
-                    self.best[r] = Some((prim, (self.on_triangle)(r, prim, h)));
-                }
-            }
-            return false;
-        }
-        let (start, n) = view.leaf_range(child, count);
-        for &prim in &view.prim_indices[start..start + n] {
-            if let Some((t, h)) = (self.test)(r, prim, ray, *t_max) {
-                *t_max = t;
-                self.best[r] = Some((prim, h));
-            }
+        let found = view.closest_in_leaf(
+            true,
+            &self.rt[r],
+            ray,
+            (child, count),
+            t_max,
+            &mut |prim, ray, t| (self.test)(r, prim, ray, t),
+            &mut |prim, h| (self.on_triangle)(r, prim, h),
+        );
+        if found.is_some() {
+            self.best[r] = found;
         }
         false
     }
 }
 
-/// The any-hit leaf test of a packet.
+/// The any-hit leaf test of a packet; it records the rays it finds blocked.
 struct Any<T> {
     rt: [RayTriangles; PACKET],
     test: T,
+    blocked: u32,
 }
 
 impl<T: FnMut(usize, u32, &Ray, f32) -> bool> PacketLeaf for Any<T> {
     #[inline(always)]
     fn visit(&mut self, view: &View<'_>, r: usize, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
-        if count & BLOCK != 0 {
-            return tri_block::test(&view.blocks[child as usize], &self.rt[r], *t_max).mask != 0;
+        let hit = view.any_in_leaf(true, &self.rt[r], ray, (child, count), *t_max, &mut |prim, ray, t| {
+            (self.test)(r, prim, ray, t)
+        });
+        if hit {
+            self.blocked |= LANE_BIT[r];
         }
-        let (start, n) = view.leaf_range(child, count);
-        view.prim_indices[start..start + n]
-            .iter()
-            .any(|&prim| (self.test)(r, prim, ray, *t_max))
+        hit
     }
 }
 
@@ -311,35 +299,13 @@ pub(super) fn any_hit_packet_impl(
     active: u32,
     test: impl FnMut(usize, u32, &Ray, f32) -> bool,
 ) -> u32 {
-    let mut blocked = 0;
     let mut leaf = Any {
         rt: std::array::from_fn(|r| RayTriangles::new(&rays[r])),
         test,
+        blocked: 0,
     };
-    // The rays the traversal drops as done are the blocked ones.
-    let mut marking = Marking {
-        leaf: &mut leaf,
-        blocked: &mut blocked,
-    };
-    traverse(bvh, rays, &mut t_max, active, &mut marking);
-    blocked
-}
-
-/// A leaf test that records which rays it finished.
-struct Marking<'a, L> {
-    leaf: &'a mut L,
-    blocked: &'a mut u32,
-}
-
-impl<L: PacketLeaf> PacketLeaf for Marking<'_, L> {
-    #[inline(always)]
-    fn visit(&mut self, view: &View<'_>, r: usize, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
-        let done = self.leaf.visit(view, r, ray, child, count, t_max);
-        if done {
-            *self.blocked |= LANE_BIT[r];
-        }
-        done
-    }
+    traverse(bvh, rays, &mut t_max, active, &mut leaf);
+    leaf.blocked
 }
 
 impl WideBvh {

@@ -25,14 +25,14 @@ pub const WIDTH: usize = 4;
 /// `count` of an inner child.
 pub(super) const INNER: u32 = u32::MAX;
 /// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
-pub(super) const BLOCK: u32 = 1 << 30;
+const BLOCK: u32 = 1 << 30;
 /// Traversal stack entries held on the call stack; a tree that may need more (deeper than
 /// about 21 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
 /// because the array is zeroed on every query (a 295-entry one, enough for any tree, was
 /// 6.6% of a Cornell box render's time in `memset`).
 pub(super) const INLINE_STACK: usize = 64;
 /// The inline stack of a shallow tree (up to 5 inner levels).
-const SMALL_STACK: usize = 16;
+pub(super) const SMALL_STACK: usize = 16;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
 const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 
@@ -632,6 +632,69 @@ impl View<'_> {
         }
     }
 
+    /// Closest-hit test of one ray against the leaf entry `(child, count)`: `t_max` shrinks
+    /// to every nearer hit, and the last of them (the nearest) is returned with its payload.
+    /// With `blocks`, a leaf block takes the four-lane triangle test and `on_triangle` makes
+    /// the payload; other leaves (and all of them without `blocks`) call `test` per primitive.
+    #[allow(clippy::too_many_arguments)] // the per-ray state of both traversals
+    #[inline(always)]
+    pub(super) fn closest_in_leaf<H>(
+        &self,
+        blocks: bool,
+        rt: &RayTriangles,
+        ray: &Ray,
+        (child, count): (u32, u32),
+        t_max: &mut f32,
+        test: &mut impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+        on_triangle: &mut impl FnMut(u32, TriangleHit) -> H,
+    ) -> Option<(u32, H)> {
+        let mut found = None;
+        if blocks && count & BLOCK != 0 {
+            let block = &self.blocks[child as usize];
+            let c = tri_block::test(block, rt, *t_max);
+            let mut mask = c.mask;
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if let Some(h) = c.hit(i, *t_max) {
+                    let prim = block.prims[i];
+                    *t_max = h.t;
+                    found = Some((prim, on_triangle(prim, h)));
+                }
+            }
+            return found;
+        }
+        let (start, n) = self.leaf_range(child, count);
+        for &prim in &self.prim_indices[start..start + n] {
+            if let Some((t, h)) = test(prim, ray, *t_max) {
+                *t_max = t;
+                found = Some((prim, h));
+            }
+        }
+        found
+    }
+
+    /// Any-hit test of one ray against the leaf entry `(child, count)` within `(0, t_max)`
+    /// (leaf blocks four lanes at a time when `blocks`, as [`Self::closest_in_leaf`]).
+    #[inline(always)]
+    pub(super) fn any_in_leaf(
+        &self,
+        blocks: bool,
+        rt: &RayTriangles,
+        ray: &Ray,
+        (child, count): (u32, u32),
+        t_max: f32,
+        test: &mut impl FnMut(u32, &Ray, f32) -> bool,
+    ) -> bool {
+        if blocks && count & BLOCK != 0 {
+            return tri_block::test(&self.blocks[child as usize], rt, t_max).mask != 0;
+        }
+        let (start, n) = self.leaf_range(child, count);
+        self.prim_indices[start..start + n]
+            .iter()
+            .any(|&prim| test(prim, ray, t_max))
+    }
+
     /// Start loading what `entry` refers to: the node, or the leaf's triangle block.
     #[inline(always)]
     fn prefetch(&self, entry: Entry) {
@@ -668,27 +731,17 @@ where
 {
     #[inline(always)]
     fn visit(&mut self, view: &View<'_>, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
-        if BLOCKS && count & BLOCK != 0 {
-            let block = &view.blocks[child as usize];
-            let c = tri_block::test(block, &self.rt, *t_max);
-            let mut mask = c.mask;
-            while mask != 0 {
-                let i = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if let Some(h) = c.hit(i, *t_max) {
-                    let prim = block.prims[i];
-                    *t_max = h.t;
-                    self.best = Some((prim, (self.on_triangle)(prim, h)));
-                }
-            }
-            return false;
-        }
-        let (start, n) = view.leaf_range(child, count);
-        for &prim in &view.prim_indices[start..start + n] {
-            if let Some((t, h)) = (self.test)(prim, ray, *t_max) {
-                *t_max = t;
-                self.best = Some((prim, h));
-            }
+        let found = view.closest_in_leaf(
+            BLOCKS,
+            &self.rt,
+            ray,
+            (child, count),
+            t_max,
+            &mut self.test,
+            &mut self.on_triangle,
+        );
+        if found.is_some() {
+            self.best = found;
         }
         false
     }
@@ -703,13 +756,7 @@ struct Any<T, const BLOCKS: bool> {
 impl<T: FnMut(u32, &Ray, f32) -> bool, const BLOCKS: bool> Leaf for Any<T, BLOCKS> {
     #[inline(always)]
     fn visit(&mut self, view: &View<'_>, ray: &Ray, child: u32, count: u32, t_max: &mut f32) -> bool {
-        if BLOCKS && count & BLOCK != 0 {
-            return tri_block::test(&view.blocks[child as usize], &self.rt, *t_max).mask != 0;
-        }
-        let (start, n) = view.leaf_range(child, count);
-        view.prim_indices[start..start + n]
-            .iter()
-            .any(|&prim| (self.test)(prim, ray, *t_max))
+        view.any_in_leaf(BLOCKS, &self.rt, ray, (child, count), *t_max, &mut self.test)
     }
 }
 
