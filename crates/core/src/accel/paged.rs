@@ -62,6 +62,14 @@ impl<T: Pod + Send + Sync> Paged<T> {
         Some(Self::Mapped { map, len })
     }
 
+    /// Keep the first `len` elements (no more than there are); a map keeps its pages.
+    pub fn truncate(&mut self, len: usize) {
+        match self {
+            Self::Heap(v) => v.truncate(len),
+            Self::Mapped { len: n, .. } => *n = len.min(*n),
+        }
+    }
+
     /// True when the elements are in a memory map.
     #[cfg(test)]
     pub fn is_mapped(&self) -> bool {

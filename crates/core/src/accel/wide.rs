@@ -12,6 +12,7 @@
 //! Any-hit traversal stops at the first blocker. The tree knows primitives by index and
 //! bounds only; queries take a closure testing one primitive.
 
+use bytemuck::Zeroable;
 use rayon::prelude::*;
 
 use super::paged::Paged;
@@ -310,8 +311,9 @@ impl WideBvh {
     /// skip). Call after [`Self::reorder_by_leaves`], with the reordered primitives.
     pub fn attach_triangles(&mut self, triangle: impl Fn(u32) -> Option<[Vec3; 3]> + Sync) {
         // The leaves in order (root first, then the nodes' lanes, `WIDTH * node + lane`);
-        // which of them get blocks is decided in parallel, then numbered in that order, so
-        // no block's index depends on the threads; then the blocks are made in parallel.
+        // their blocks are made in parallel, each reading its triangles once, and numbered
+        // in that order after the leaves that cannot have one are dropped, so no block's
+        // index depends on the threads.
         const ROOT: u32 = u32::MAX;
         let is_plain_leaf = |count: u32| count != INNER && count & BLOCK == 0 && count != 0;
         let mut leaves: Vec<(u32, u32, u32)> = Vec::with_capacity(self.nodes.len() * WIDTH + 1);
@@ -328,21 +330,41 @@ impl WideBvh {
             }
         }
         let prim_indices = &self.prim_indices;
-        let prims_of = |child: u32, count: u32| {
+        // Each leaf's block in one pass over its triangles; a leaf with a primitive that is
+        // not a plain triangle gets an empty block (count 0, which no real block has), and
+        // those are dropped after, keeping the order.
+        let block = |k: usize| {
+            let (_, child, count) = leaves[k];
             let start = child as usize;
-            prim_indices
+            let Some(prims) = prim_indices
                 .get(start..start + count as usize)
                 .filter(|p| p.len() <= tri_block::LANES)
+            else {
+                return TriBlock::zeroed();
+            };
+            let mut tris = [[Vec3::ZERO; 3]; tri_block::LANES];
+            for (t, &p) in tris.iter_mut().zip(prims) {
+                match triangle(p) {
+                    Some(positions) => *t = positions,
+                    None => return TriBlock::zeroed(),
+                }
+            }
+            TriBlock::new(child, prims, &tris[..prims.len()])
         };
-        let all_triangles: Vec<bool> = leaves
-            .par_iter()
-            .map(|&(_, child, count)| prims_of(child, count).is_some_and(|p| p.iter().all(|&p| triangle(p).is_some())))
-            .collect();
+        let mut blocks = Paged::from_fn(leaves.len(), block);
+        if blocks.iter().any(|b| b.count == 0) {
+            let mut kept = 0;
+            for k in 0..leaves.len() {
+                if blocks[k].count != 0 {
+                    blocks[kept] = blocks[k];
+                    leaves[kept] = leaves[k];
+                    kept += 1;
+                }
+            }
+            blocks.truncate(kept);
+            leaves.truncate(kept);
+        }
         let first = self.blocks.len() as u32;
-        leaves.retain({
-            let mut yes = all_triangles.iter();
-            move |_| yes.next().copied().unwrap_or(false)
-        });
         for (k, &(at, _, _)) in leaves.iter().enumerate() {
             let (child, count) = if at == ROOT {
                 self.root.as_mut().map(|(c, n)| (c, n)).expect("a leaf root")
@@ -354,20 +376,15 @@ impl WideBvh {
             *child = first + k as u32;
             *count |= BLOCK;
         }
-        let block = |k: usize| {
-            let (_, child, count) = leaves[k];
-            let prims = prims_of(child, count).expect("checked above");
-            let mut tris = [[Vec3::ZERO; 3]; tri_block::LANES];
-            for (t, &p) in tris.iter_mut().zip(prims) {
-                *t = triangle(p).expect("checked above");
-            }
-            TriBlock::new(child, prims, &tris[..prims.len()])
-        };
         // After any blocks of an earlier call.
-        let earlier = std::mem::take(&mut self.blocks);
-        self.blocks = Paged::from_fn(earlier.len() + leaves.len(), |k| {
-            earlier.get(k).copied().unwrap_or_else(|| block(k - earlier.len()))
-        });
+        if first == 0 {
+            self.blocks = blocks;
+        } else {
+            let earlier = std::mem::take(&mut self.blocks);
+            self.blocks = Paged::from_fn(earlier.len() + blocks.len(), |k| {
+                earlier.get(k).copied().unwrap_or_else(|| blocks[k - earlier.len()])
+            });
+        }
         self.prefetch = self.is_larger_than_a_cache();
     }
 
