@@ -107,10 +107,14 @@ pub fn run(args: &BenchRaysArgs) -> Result<()> {
         bvh.set_isa(isa.into()).map_err(anyhow::Error::msg)?;
     }
     say!(
-        "mesh {}: {} triangles; 4-wide ({}) BVH built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
+        "mesh {}: {} triangles; {}-wide BVH ({}, {} nodes, {} leaf blocks, traversal stack {}) built in {:.3} s on {threads} thread{} ({:.2} M triangles/s)",
         args.mesh.display(),
         triangles.len(),
+        mcrender_core::accel::WIDTH,
         bvh.isa().name(),
+        bvh.nodes().len(),
+        bvh.triangle_blocks(),
+        bvh.traversal_stack_size(),
         build_s,
         if threads == 1 { "" } else { "s" },
         triangles.len() as f64 / build_s / 1e6

@@ -1,4 +1,4 @@
-//! Layer 2: the bounding volume hierarchy the scene traces, 4-wide ([`WideBvh`]), over
+//! Layer 2: the bounding volume hierarchy the scene traces, 8-wide ([`WideBvh`]), over
 //! primitives known by index and bounds, with leaf
 //! triangles precomputed for testing four at a time ([`TriBlock`]) and the instruction set
 //! of the queries chosen at run time ([`Isa`]).

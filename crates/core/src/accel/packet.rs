@@ -1,11 +1,11 @@
-//! Packets of up to eight rays traced through a [`WideBvh`] together. A node's four boxes
+//! Packets of up to eight rays traced through a [`WideBvh`] together. A node's eight boxes
 //! are tested against all of the packet's rays at once (one lane per ray, so AVX2 does a
 //! step of the slab test for eight rays in one instruction), and a child is pushed once,
 //! with the mask of the rays that enter it: the node loads, the stack and the loop are
 //! shared by the rays. Leaves are tested ray by ray with the one-ray kernel
 //! ([`tri_block::test`]), since the watertight test's axis permutation is the ray's own.
 //!
-//! A ray's box tests are the one-ray query's ([`super::wide`]'s `RayBoxes::hit4`) step for
+//! A ray's box tests are the one-ray query's ([`super::wide`]'s `RayBoxes::hit_lanes`) step for
 //! step: the same planes, roundings and NaN rules. So each ray enters every box it would
 //! enter alone within its current closest distance, and finds the same closest distance
 //! (the nearest hit is in a box the ray enters before reaching it). Only the order in which
@@ -57,7 +57,7 @@ impl PacketBoxes {
 
     /// Slab test of every ray against box `i` of `node` within `(0, limit[r])`: the mask of
     /// the rays that enter it and the nearest of their entry distances. A ray with limit
-    /// `-inf` enters nothing. Each lane is `hit4`'s computation for its ray.
+    /// `-inf` enters nothing. Each lane is `hit_lanes`'s computation for its ray.
     #[allow(clippy::needless_range_loop)] // lane loops read several arrays at the same index
     #[inline(always)]
     fn hit_child(&self, node: &WideNode, i: usize, limit: &Lanes) -> (u32, f32) {

@@ -13,7 +13,8 @@
 //! The module also holds the cache prefetch hint of the traversal ([`prefetch`]), an SSE
 //! instruction every x86-64 CPU has.
 //!
-//! AVX-512 is not used: the nodes and leaf blocks are 4 wide, which AVX2 covers.
+//! AVX-512 is not used: a node's eight boxes fill one 256-bit AVX2 register per plane (two
+//! SSE registers in the portable build), and the leaf blocks are four lanes wide.
 
 #![allow(unsafe_code)]
 

@@ -1,6 +1,7 @@
-//! A 4-wide BVH: each node holds the boxes of up to four children in structure-of-arrays
-//! form (`lo[axis][lane]`), so one ray is tested against the four boxes with the same few
-//! instructions per axis, which the compiler turns into 4-lane SIMD (SSE on any x86-64, NEON
+//! An 8-wide BVH: each node holds the boxes of up to eight children in structure-of-arrays
+//! form (`lo[axis][lane]`), so one ray is tested against the eight boxes with the same few
+//! instructions per axis, which the compiler turns into SIMD (one 8-lane AVX2 instruction
+//! per step in [`super::simd`]'s AVX2 build, two 4-lane ones with SSE on any x86-64, NEON
 //! on aarch64) without `unsafe` or target-specific code: the lane loops below are plain
 //! fixed-size array arithmetic, written so each step maps onto one vector instruction
 //! (`a > b ? a : b` is `maxps`). Nodes are built by [`super::wide_build`] from binned-SAH
@@ -22,18 +23,21 @@ use super::wide_build::{self, MAX_DEPTH};
 use crate::math::{gamma, Bounds3, Ray, Vec3};
 
 /// Children per node.
-pub const WIDTH: usize = 4;
+pub const WIDTH: usize = 8;
 /// `count` of an inner child.
 pub(super) const INNER: u32 = u32::MAX;
 /// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
 const BLOCK: u32 = 1 << 30;
 /// Traversal stack entries held on the call stack; a tree that may need more (deeper than
-/// about 21 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
+/// 18 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
 /// because the array is zeroed on every query (a 295-entry one, enough for any tree, was
-/// 6.6% of a Cornell box render's time in `memset`).
-pub(super) const INLINE_STACK: usize = 64;
-/// The inline stack of a shallow tree (up to 5 inner levels).
-pub(super) const SMALL_STACK: usize = 16;
+/// 6.6% of a Cornell box render's time in `memset`), but large enough for the trees of big
+/// meshes: `bench/rays.sh`'s 1M triangles need 78 entries, and with a 64-entry array they
+/// took a heap stack, allocated and freed per ray (3.5% of incoherent closest-hit time in
+/// `vec!` alone, `perf report`).
+pub(super) const INLINE_STACK: usize = 128;
+/// The inline stack of a shallow tree (up to 4 inner levels).
+pub(super) const SMALL_STACK: usize = 32;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
 const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 
@@ -44,7 +48,7 @@ const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
 /// tree stays in cache, where the hints are only instructions (1.3% more on the Cornell box).
 const PREFETCH_FROM_BYTES: usize = 512 << 10;
 
-/// A node: up to four children's boxes and what each child is (plain data, so a large
+/// A node: up to eight children's boxes and what each child is (plain data, so a large
 /// tree's nodes can sit in a memory map, [`super::paged`]).
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(64))]
@@ -113,7 +117,7 @@ impl RayBoxes {
         }
     }
 
-    /// Slab test of the ray against the node's four boxes within `(0, t_max)`: entry
+    /// Slab test of the ray against the node's eight boxes within `(0, t_max)`: entry
     /// distances and the boxes entered as a mask (bit `i` for lane `i`). The far distances are scaled by
     /// `1 + 2 gamma(3)` so rounding cannot make a ray miss a box it touches (pbrt-v4
     /// `Bounds3::IntersectP`), and the near ones by `1 - 2 gamma(3)` so a `t_max` just past
@@ -121,7 +125,7 @@ impl RayBoxes {
     /// gives `0 x inf = NaN`, which the comparisons below ignore: that slab does not limit
     /// the ray (conservative, so flat boxes are not missed).
     #[inline(always)]
-    fn hit4(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+    fn hit_lanes(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
         let scale = 1.0 + 2.0 * gamma(3);
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
@@ -148,12 +152,13 @@ impl RayBoxes {
     }
 }
 
-/// The 4-wide hierarchy and the primitive order its leaves refer to.
+/// The 8-wide hierarchy and the primitive order its leaves refer to.
 #[derive(Clone, Debug, Default)]
 pub struct WideBvh {
     nodes: Paged<WideNode>,
     prim_indices: Vec<u32>,
-    /// The root: an inner node, or a leaf when there are at most four primitives.
+    /// The root: an inner node, or a leaf when there are at most [`wide_build::MAX_LEAF`]
+    /// primitives.
     root: Option<(u32, u32)>,
     bounds: Bounds3,
     /// Traversal stack entries a query can need: one for the root, then at most
@@ -488,7 +493,7 @@ impl WideBvh {
                 continue;
             }
             let node = &view.nodes[e.child as usize];
-            let (near, hit) = r.hit4(node, t_max);
+            let (near, hit) = r.hit_lanes(node, t_max);
             // Push the entered children far to near (insertion into the stack top).
             let base = sp;
             for (i, &t_near) in near.iter().enumerate() {
@@ -842,8 +847,8 @@ mod tests {
     }
 
     #[test]
-    fn nodes_are_two_cache_lines() {
-        assert_eq!(std::mem::size_of::<WideNode>(), 128);
+    fn nodes_are_four_cache_lines() {
+        assert_eq!(std::mem::size_of::<WideNode>(), 256);
     }
 
     #[test]
@@ -1000,7 +1005,7 @@ mod tests {
 
     /// The box test agrees lane by lane with the scalar `Bounds3::hit`.
     #[test]
-    fn four_lane_box_test_matches_the_scalar_one() {
+    fn lane_box_test_matches_the_scalar_one() {
         let mut seed = 1u32;
         let mut rnd = || {
             seed = seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
@@ -1028,7 +1033,7 @@ mod tests {
             }
             let ray = Ray::new(Vec3::new(rnd(), rnd(), rnd()) * 2.0, d);
             let t_max = if rnd() > 0.0 { f32::INFINITY } else { rnd().abs() };
-            let (_, hit) = RayBoxes::new(&ray).hit4(&node, t_max);
+            let (_, hit) = RayBoxes::new(&ray).hit_lanes(&node, t_max);
             for (i, b) in boxes.iter().enumerate() {
                 let scalar = b.hit(ray.o.into(), ray.d.recip().into(), t_max);
                 assert_eq!(

@@ -2,7 +2,7 @@
 //! centroid axes, fewer in small nodes, [`buckets_for`]; the cheapest split wins; costs in
 //! [`Costs`]) over 32-byte build primitives,
 //! partitioning the primitive array in place, so a leaf is a range of the final primitive
-//! order. The 4-wide nodes are made directly as the binary splits are decided
+//! order. The 8-wide nodes are made directly as the binary splits are decided
 //! ([`build_wide`]): the binary tree is never stored, nothing is allocated per node, and
 //! large subtrees are built in parallel with rayon. The cost model depends on the tree's
 //! size ([`Costs`]).
@@ -18,7 +18,7 @@ use super::wide::{WideNode, INNER, WIDTH};
 
 use crate::math::Bounds3;
 
-/// Primitives per leaf at most (one 4-wide leaf test).
+/// Primitives per leaf at most (one four-lane leaf block test).
 pub(super) const MAX_LEAF: usize = 4;
 /// SAH buckets per axis at most.
 const BUCKETS: usize = 12;
@@ -233,14 +233,14 @@ fn children(prims: &mut [BuildPrim], base: usize, node: &Decided, costs: Costs) 
     }
 }
 
-/// The 4-wide tree over `prims` (primitives `0..` of the final order, reordered in place):
+/// The 8-wide tree over `prims` (primitives `0..` of the final order, reordered in place):
 /// its nodes in depth-first order, the root's `(child, count)` entry (a leaf when there are
 /// at most [`MAX_LEAF`] primitives), the bounds of everything and the deepest inner level
 /// (1 for the root, 0 for a leaf root).
 ///
 /// Each node is made as the binary tree is split: starting from the binary node's two
-/// children, the inner child of largest surface area is opened until there are four (as in
-/// Wald et al. 2008, "Getting rid of packets", and Embree's BVH4 builder). The binary tree
+/// children, the inner child of largest surface area is opened until there are [`WIDTH`] (as in
+/// Wald et al. 2008, "Getting rid of packets", and Embree's BVH4 and BVH8 builders). The binary tree
 /// is never stored: a child is decided (split and partitioned) when it becomes a lane, and
 /// an inner lane that stays closed starts its own wide node from that decision.
 pub(super) fn build_wide(prims: &mut [BuildPrim], costs: Costs) -> (Vec<WideNode>, (u32, u32), Bounds3, usize) {
@@ -262,7 +262,7 @@ const PARALLEL_WIDE: usize = 4 * PARALLEL_MIN;
 /// `level`, to `out`, its root first; returns the deepest inner level below.
 fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Costs, out: &mut Vec<WideNode>) -> usize {
     let base = node.start;
-    // Open the inner lane of largest surface area until there are four (kept in a fixed
+    // Open the inner lane of largest surface area until there are `WIDTH` (kept in a fixed
     // array with their areas).
     let [a, b] = children(prims, base, &node, costs);
     let mut lanes: [(Decided, f32); WIDTH] = [(a, 0.0); WIDTH];
