@@ -262,7 +262,7 @@ impl WideBvh {
     /// triangle blocks attached, for memory limits checked before anything is built: the
     /// 32-byte build primitives and the 4-byte primitive order, plus nodes and blocks at
     /// allowances above what was measured, per primitive. Trees of 65,536 primitives or more
-    /// (block costs, fuller leaves): 0.13 nodes and 0.28 blocks on `bench/rays.sh`'s 1M-triangle mesh,
+    /// (block costs, fuller leaves): 0.085 nodes and 0.29 blocks on `bench/rays.sh`'s 1M-triangle mesh,
     /// allowed 0.2 and 0.4, the nodes twice over for the copies of the parallel build.
     /// Smaller trees (pbrt's costs: leaves of one primitive, mostly): a block per primitive
     /// and 0.4 nodes.
@@ -280,8 +280,8 @@ impl WideBvh {
         ((fixed + per_primitive) * primitives as f64).ceil() as u64
     }
 
-    /// Traversal stack entries a query on this tree can need (more than 64 puts the stack
-    /// on the heap; see [`INLINE_STACK`]).
+    /// Traversal stack entries a query on this tree can need (more than [`INLINE_STACK`]
+    /// puts the stack on the heap).
     #[must_use]
     pub fn traversal_stack_size(&self) -> usize {
         self.stack_size
