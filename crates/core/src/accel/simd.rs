@@ -10,6 +10,12 @@
 //! give the same bits (a fused multiply-add is exactly rounded whichever unit does it, and
 //! Rust never contracts a separate multiply and add), which the tests check.
 //!
+//! One step is written out in AVX2 intrinsics instead: a node's box test
+//! ([`Avx2Boxes`]), where the compiler had split the far planes' arithmetic into pieces of
+//! lanes with shuffles between them (after the change, incoherent rays on a 1k-triangle
+//! mesh, whose tree sits in cache, ran 1.2x faster). It computes the plain code's bits,
+//! which a test checks.
+//!
 //! The module also holds the cache prefetch hint of the traversal ([`prefetch`]), an SSE
 //! instruction every x86-64 CPU has.
 //!
@@ -20,7 +26,7 @@
 
 use super::packet::{any_hit_packet_impl, closest_hit_packet_impl, PACKET};
 use super::tri_block::TriangleHit;
-use super::wide::{any_hit_impl, closest_hit_impl, WideBvh};
+use super::wide::{any_hit_impl, closest_hit_impl, BoxTest, PlainBoxes, RayBoxes, WideBvh, WideNode, WIDTH};
 use crate::math::Ray;
 
 /// An instruction set the queries can run with.
@@ -85,7 +91,7 @@ pub(super) fn closest_hit<H>(
         // all `closest_hit_avx2` requires.
         return unsafe { closest_hit_avx2(bvh, ray, t_max, test, on_triangle) };
     }
-    closest_hit_impl(bvh, ray, t_max, test, on_triangle)
+    closest_hit_impl(bvh, ray, t_max, test, on_triangle, PlainBoxes)
 }
 
 /// Any hit with the tree's instruction set (see [`WideBvh::any_hit_triangles`]).
@@ -96,7 +102,7 @@ pub(super) fn any_hit(bvh: &WideBvh, ray: &Ray, t_max: f32, test: impl FnMut(u32
         // SAFETY: as in `closest_hit`: `Avx2` is set only on a CPU with AVX2 and FMA.
         return unsafe { any_hit_avx2(bvh, ray, t_max, test) };
     }
-    any_hit_impl(bvh, ray, t_max, test)
+    any_hit_impl(bvh, ray, t_max, test, PlainBoxes)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -108,13 +114,73 @@ fn closest_hit_avx2<H>(
     test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
     on_triangle: impl FnMut(u32, TriangleHit) -> H,
 ) -> Option<(u32, H)> {
-    closest_hit_impl(bvh, ray, t_max, test, on_triangle)
+    closest_hit_impl(bvh, ray, t_max, test, on_triangle, Avx2Boxes(()))
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn any_hit_avx2(bvh: &WideBvh, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-    any_hit_impl(bvh, ray, t_max, test)
+    any_hit_impl(bvh, ray, t_max, test, Avx2Boxes(()))
+}
+
+/// The AVX2 box test ([`BoxTest`]). Made only inside the `*_avx2` functions (and the tests,
+/// after checking the CPU), which run only
+/// on a CPU with AVX2 and FMA, so holding one proves the CPU has them.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy, Debug)]
+struct Avx2Boxes(());
+
+#[cfg(target_arch = "x86_64")]
+impl BoxTest for Avx2Boxes {
+    #[inline(always)]
+    fn hit_lanes(self, r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        // SAFETY: an `Avx2Boxes` exists only on a CPU with AVX2 and FMA (see the type), all
+        // that `hit_lanes_avx2` requires.
+        unsafe { hit_lanes_avx2(r, node, t_max) }
+    }
+}
+
+/// [`RayBoxes::hit_lanes`] in AVX2, step for step: each lane's operations and their
+/// order are the same, and `max`/`min` take the new value only when it compares greater
+/// / less, keeping the running one on a NaN, as the plain code's selects do (x86's
+/// `maxps a, b` is `a > b ? a : b`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+fn hit_lanes_avx2(r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+    const { assert!(WIDTH == 8, "one 256-bit register per plane") };
+    use crate::math::gamma;
+    use std::arch::x86_64::{
+        _mm256_cmp_ps, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+        _mm256_set1_ps, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps, _CMP_LE_OQ,
+    };
+    let scale = _mm256_set1_ps(1.0 + 2.0 * gamma(3));
+    let mut near = _mm256_setzero_ps();
+    let mut far = _mm256_set1_ps(t_max);
+    for a in 0..3 {
+        let near_plane = &node.planes[usize::from(r.neg[a])][a];
+        let far_plane = &node.planes[usize::from(!r.neg[a])][a];
+        let o = _mm256_set1_ps(r.o[a]);
+        let inv_d = _mm256_set1_ps(r.inv_d[a]);
+        // SAFETY: each plane is an array of `WIDTH` = 8 floats, what an unaligned 256-bit
+        // load reads.
+        let (np, fp) = unsafe {
+            (
+                _mm256_loadu_ps(near_plane.as_ptr()),
+                _mm256_loadu_ps(far_plane.as_ptr()),
+            )
+        };
+        let tn = _mm256_mul_ps(_mm256_sub_ps(np, o), inv_d);
+        let tf = _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(fp, o), inv_d), scale);
+        near = _mm256_max_ps(tn, near);
+        far = _mm256_min_ps(tf, far);
+    }
+    near = _mm256_mul_ps(near, _mm256_set1_ps(1.0 - 2.0 * gamma(3)));
+    let hit = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far)) as u32;
+    let mut out = [0.0f32; WIDTH];
+    // SAFETY: `out` holds 8 floats, what an unaligned 256-bit store writes.
+    unsafe { _mm256_storeu_ps(out.as_mut_ptr(), near) };
+    (out, hit)
 }
 
 /// Closest hits of a packet with the tree's instruction set (see
@@ -210,6 +276,57 @@ mod tests {
         let big = [3u64; 100];
         prefetch(&big);
         assert_eq!(big, [3u64; 100]);
+    }
+
+    /// The AVX2 box test gives the plain one's entry distances and mask, bit for bit: random
+    /// boxes, some lanes empty, directions with zero components (rays parallel to a slab,
+    /// some with the origin on its plane: `0 x inf = NaN`), finite and infinite `t_max`.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx2_box_test_matches_the_plain_one() {
+        use crate::math::Vec3;
+        if !Isa::Avx2.is_supported() {
+            eprintln!("NOT TESTED: this CPU has no AVX2 and FMA; the AVX2 box test did not run");
+            return;
+        }
+        let mut seed = 7u32;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            (seed >> 8) as f32 / (1u32 << 24) as f32 * 4.0 - 2.0
+        };
+        let mut entered = 0;
+        for k in 0..4000 {
+            let mut node = WideNode::EMPTY;
+            // Leave the last lanes empty in some nodes, as the build does.
+            let used = 1 + k % WIDTH;
+            for i in 0..used {
+                for a in 0..3 {
+                    let (u, v) = (rnd(), rnd());
+                    node.planes[0][a][i] = u.min(v);
+                    node.planes[1][a][i] = u.max(v);
+                }
+            }
+            let mut d = Vec3::new(rnd(), rnd(), rnd());
+            let mut o = Vec3::new(rnd(), rnd(), rnd()) * 2.0;
+            if k % 3 == 0 {
+                d.y = 0.0;
+            }
+            if k % 5 == 0 {
+                // The origin on a box's lower y plane, the direction parallel to it.
+                d.y = 0.0;
+                o.y = node.planes[0][1][0];
+            }
+            let ray = Ray::new(o, d);
+            let t_max = if k % 2 == 0 { f32::INFINITY } else { rnd().abs() };
+            let r = RayBoxes::new(&ray);
+            let (plain_near, plain_hit) = PlainBoxes.hit_lanes(&r, &node, t_max);
+            let (near, hit) = Avx2Boxes(()).hit_lanes(&r, &node, t_max);
+            assert_eq!(hit, plain_hit, "node {k}");
+            assert_eq!(near.map(f32::to_bits), plain_near.map(f32::to_bits), "node {k}");
+            entered += hit.count_ones();
+        }
+        // Both outcomes were tested, many times.
+        assert!(entered > 200 && entered < 4000, "{entered} lanes entered");
     }
 
     #[test]

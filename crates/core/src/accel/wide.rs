@@ -101,14 +101,34 @@ impl Entry {
 }
 
 /// The per-ray constants of the box test.
-struct RayBoxes {
-    o: [f32; 3],
-    inv_d: [f32; 3],
-    neg: [bool; 3],
+pub(super) struct RayBoxes {
+    pub(super) o: [f32; 3],
+    pub(super) inv_d: [f32; 3],
+    pub(super) neg: [bool; 3],
+}
+
+/// The box test of a node as an instruction set runs it: [`PlainBoxes`] is
+/// [`RayBoxes::hit_lanes`] as the compiler vectorises it, `simd::Avx2Boxes` the same
+/// arithmetic written in AVX2 (the compiler split the far planes' part into pieces of
+/// lanes with shuffles between them). Both give the same bits.
+pub(super) trait BoxTest: Copy {
+    /// [`RayBoxes::hit_lanes`].
+    fn hit_lanes(self, r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32);
+}
+
+/// [`RayBoxes::hit_lanes`] itself.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PlainBoxes;
+
+impl BoxTest for PlainBoxes {
+    #[inline(always)]
+    fn hit_lanes(self, r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        r.hit_lanes(node, t_max)
+    }
 }
 
 impl RayBoxes {
-    fn new(ray: &Ray) -> Self {
+    pub(super) fn new(ray: &Ray) -> Self {
         let inv_d = ray.d.recip().to_array();
         Self {
             o: ray.o.to_array(),
@@ -125,7 +145,7 @@ impl RayBoxes {
     /// gives `0 x inf = NaN`, which the comparisons below ignore: that slab does not limit
     /// the ray (conservative, so flat boxes are not missed).
     #[inline(always)]
-    fn hit_lanes(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+    pub(super) fn hit_lanes(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
         let scale = 1.0 + 2.0 * gamma(3);
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
@@ -410,7 +430,7 @@ impl WideBvh {
         t_max: f32,
         test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
     ) -> Option<(u32, H)> {
-        traverse_closest::<H, false>(self, ray, t_max, test, |_, _| {
+        traverse_closest::<H, false>(self, ray, t_max, test, PlainBoxes, |_, _| {
             unreachable!("leaf blocks are tested through `test` in this query")
         })
     }
@@ -434,7 +454,7 @@ impl WideBvh {
     /// blocker. A ray with a non-finite origin or direction is blocked by nothing. Leaves
     /// with precomputed triangles are tested through `test`, one primitive at a time.
     pub fn any_hit(&self, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-        traverse_any::<false>(self, ray, t_max, test)
+        traverse_any::<false>(self, ray, t_max, test, PlainBoxes)
     }
 
     /// [`Self::any_hit`] with the leaves of [`Self::attach_triangles`] tested four
@@ -446,7 +466,7 @@ impl WideBvh {
     /// Visit the leaves `ray` enters, nearest entry first, with `leaf` (which may shrink
     /// `t_max`); true when it stopped the traversal.
     #[inline(always)]
-    fn traverse(&self, ray: &Ray, mut t_max: f32, leaf: &mut impl Leaf) -> bool {
+    fn traverse(&self, ray: &Ray, mut t_max: f32, leaf: &mut impl Leaf, boxes: impl BoxTest) -> bool {
         let Some((root, root_count)) = self.root else {
             return false;
         };
@@ -474,50 +494,89 @@ impl WideBvh {
             heap = vec![Entry::ZERO; self.stack_size];
             &mut heap
         };
-        stack[0] = Entry {
+        // `cur` is what is visited next; the stack holds the rest, nearest entry on top.
+        let mut cur = Entry {
             child: root,
             count: root_count,
             t_near: 0.0,
         };
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let e = stack[sp];
-            if e.t_near > t_max {
-                continue;
-            }
-            if e.count != INNER {
-                if leaf.visit(&view, ray, e.child, e.count, &mut t_max) {
+        let mut sp = 0;
+        loop {
+            if cur.count != INNER {
+                if leaf.visit(&view, ray, cur.child, cur.count, &mut t_max) {
                     return true;
                 }
-                continue;
-            }
-            let node = &view.nodes[e.child as usize];
-            let (near, hit) = r.hit_lanes(node, t_max);
-            // Push the entered children far to near (insertion into the stack top).
-            let base = sp;
-            for (i, &t_near) in near.iter().enumerate() {
-                if hit & 1 << i == 0 {
-                    continue;
-                }
-                let entry = Entry {
+            } else {
+                let node = &view.nodes[cur.child as usize];
+                let (near, mut lanes) = boxes.hit_lanes(&r, node, t_max);
+                let entry = |i: usize| Entry {
                     child: node.child[i],
                     count: node.count[i],
-                    t_near,
+                    t_near: near[i],
                 };
-                if self.prefetch {
-                    view.prefetch(entry);
+                // The entered lanes in lane order. One or two go straight on without the
+                // stack's sorting (most nodes of an incoherent ray, whose mispredicted
+                // branches cost more than the box test); from three on they are pushed far
+                // to near. Either way they are visited in the same order: nearest first, and
+                // of equal entry distances the later lane first.
+                if lanes != 0 {
+                    let first = entry(lanes.trailing_zeros() as usize);
+                    lanes &= lanes - 1;
+                    if self.prefetch {
+                        view.prefetch(first);
+                    }
+                    if lanes == 0 {
+                        cur = first;
+                        continue;
+                    }
+                    let second = entry(lanes.trailing_zeros() as usize);
+                    lanes &= lanes - 1;
+                    if self.prefetch {
+                        view.prefetch(second);
+                    }
+                    let (nearer, farther) = if second.t_near <= first.t_near {
+                        (second, first)
+                    } else {
+                        (first, second)
+                    };
+                    if lanes == 0 {
+                        stack[sp] = farther;
+                        sp += 1;
+                        cur = nearer;
+                        continue;
+                    }
+                    let base = sp;
+                    stack[sp] = farther;
+                    stack[sp + 1] = nearer;
+                    sp += 2;
+                    while lanes != 0 {
+                        let e = entry(lanes.trailing_zeros() as usize);
+                        lanes &= lanes - 1;
+                        if self.prefetch {
+                            view.prefetch(e);
+                        }
+                        let mut j = sp;
+                        while j > base && stack[j - 1].t_near < e.t_near {
+                            stack[j] = stack[j - 1];
+                            j -= 1;
+                        }
+                        stack[j] = e;
+                        sp += 1;
+                    }
                 }
-                let mut j = sp;
-                while j > base && stack[j - 1].t_near < entry.t_near {
-                    stack[j] = stack[j - 1];
-                    j -= 1;
+            }
+            // The nearest pending entry the ray can still reach.
+            loop {
+                if sp == 0 {
+                    return false;
                 }
-                stack[j] = entry;
-                sp += 1;
+                sp -= 1;
+                cur = stack[sp];
+                if cur.t_near <= t_max {
+                    break;
+                }
             }
         }
-        false
     }
 
     /// What a query reads: the arrays, the root entry, the traversal stack size and whether
@@ -789,6 +848,7 @@ fn traverse_closest<H, const BLOCKS: bool>(
     ray: &Ray,
     t_max: f32,
     test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
+    boxes: impl BoxTest,
     on_triangle: impl FnMut(u32, TriangleHit) -> H,
 ) -> Option<(u32, H)> {
     let mut leaf = Closest::<H, _, _, BLOCKS> {
@@ -797,7 +857,7 @@ fn traverse_closest<H, const BLOCKS: bool>(
         on_triangle,
         best: None,
     };
-    bvh.traverse(ray, t_max, &mut leaf);
+    bvh.traverse(ray, t_max, &mut leaf, boxes);
     leaf.best
 }
 
@@ -808,12 +868,13 @@ fn traverse_any<const BLOCKS: bool>(
     ray: &Ray,
     t_max: f32,
     test: impl FnMut(u32, &Ray, f32) -> bool,
+    boxes: impl BoxTest,
 ) -> bool {
     let mut leaf = Any::<_, BLOCKS> {
         rt: RayTriangles::new(ray),
         test,
     };
-    bvh.traverse(ray, t_max, &mut leaf)
+    bvh.traverse(ray, t_max, &mut leaf, boxes)
 }
 
 /// [`WideBvh::closest_hit_triangles`] in the caller's instruction set (see [`simd`]).
@@ -824,14 +885,21 @@ pub(super) fn closest_hit_impl<H>(
     t_max: f32,
     test: impl FnMut(u32, &Ray, f32) -> Option<(f32, H)>,
     on_triangle: impl FnMut(u32, TriangleHit) -> H,
+    boxes: impl BoxTest,
 ) -> Option<(u32, H)> {
-    traverse_closest::<H, true>(bvh, ray, t_max, test, on_triangle)
+    traverse_closest::<H, true>(bvh, ray, t_max, test, boxes, on_triangle)
 }
 
 /// [`WideBvh::any_hit_triangles`] in the caller's instruction set (see [`simd`]).
 #[inline(always)]
-pub(super) fn any_hit_impl(bvh: &WideBvh, ray: &Ray, t_max: f32, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-    traverse_any::<true>(bvh, ray, t_max, test)
+pub(super) fn any_hit_impl(
+    bvh: &WideBvh,
+    ray: &Ray,
+    t_max: f32,
+    test: impl FnMut(u32, &Ray, f32) -> bool,
+    boxes: impl BoxTest,
+) -> bool {
+    traverse_any::<true>(bvh, ray, t_max, test, boxes)
 }
 
 #[cfg(test)]
