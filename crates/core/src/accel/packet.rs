@@ -16,7 +16,7 @@
 use glam::Vec4;
 
 use super::tri_block::{RayTriangles, TriangleHit};
-use super::wide::{View, WideBvh, WideNode, INLINE_STACK, INNER, SMALL_STACK, WIDTH};
+use super::wide::{TraversalStack, View, WideBvh, WideNode, INNER, WIDTH};
 use crate::math::{gamma, Ray};
 
 /// Rays per packet.
@@ -102,15 +102,6 @@ struct PacketEntry {
     t_near: f32,
 }
 
-impl PacketEntry {
-    const ZERO: Self = Self {
-        child: 0,
-        count: 0,
-        mask: 0,
-        t_near: 0.0,
-    };
-}
-
 /// What the packet traversal does at a leaf, for one of its rays.
 trait PacketLeaf {
     /// Test the leaf entry `(child, count)` for ray `r`, possibly shrinking its `t_max`;
@@ -123,7 +114,7 @@ trait PacketLeaf {
 /// from then on.
 #[inline(always)]
 fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32, leaf: &mut impl PacketLeaf) {
-    let (view, root, stack_size, prefetch) = bvh.query_parts();
+    let (view, root, prefetch) = bvh.query_parts();
     let Some((root, root_count)) = root else {
         return;
     };
@@ -137,27 +128,14 @@ fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32,
         return;
     }
     let boxes = PacketBoxes::new(rays);
-    let (mut small, mut inline, mut heap);
-    let stack: &mut [PacketEntry] = if stack_size <= SMALL_STACK {
-        small = [PacketEntry::ZERO; SMALL_STACK];
-        &mut small
-    } else if stack_size <= INLINE_STACK {
-        inline = [PacketEntry::ZERO; INLINE_STACK];
-        &mut inline
-    } else {
-        heap = vec![PacketEntry::ZERO; stack_size];
-        &mut heap
-    };
-    stack[0] = PacketEntry {
+    let mut stack = TraversalStack::<PacketEntry>::new();
+    stack.push(PacketEntry {
         child: root,
         count: root_count,
         mask: alive,
         t_near: 0.0,
-    };
-    let mut sp = 1;
-    while sp > 0 {
-        sp -= 1;
-        let e = stack[sp];
+    });
+    while let Some(e) = stack.pop() {
         // The rays still searching whose closest hit so far is not before the box.
         let (t0, t1) = (Vec4::from_slice(&t_max[..4]), Vec4::from_slice(&t_max[4..]));
         let reach = Vec4::splat(e.t_near);
@@ -190,7 +168,7 @@ fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32,
         });
         // Push the entered children far to near (insertion into the stack top); unused
         // lanes come last.
-        let base = sp;
+        let base = stack.len();
         for i in 0..WIDTH {
             if node.count[i] == 0 {
                 break;
@@ -208,13 +186,13 @@ fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32,
             if prefetch {
                 view.prefetch_child(entry.child, entry.count);
             }
-            let mut j = sp;
+            stack.push(entry);
+            let mut j = stack.len() - 1;
             while j > base && stack[j - 1].t_near < entry.t_near {
                 stack[j] = stack[j - 1];
                 j -= 1;
             }
             stack[j] = entry;
-            sp += 1;
         }
     }
 }

@@ -28,18 +28,15 @@ pub const WIDTH: usize = 8;
 pub(super) const INNER: u32 = u32::MAX;
 /// Flag in a leaf's `count`: its triangles are precomputed, `child` is the block's index.
 const BLOCK: u32 = 1 << 30;
-/// Traversal stack entries held on the call stack; a tree that may need more (deeper than
-/// 18 inner levels: degenerate inputs) traverses with a stack on the heap. Kept small
-/// because the array is zeroed on every query (a 295-entry one, enough for any tree, was
-/// 6.6% of a Cornell box render's time in `memset`), but large enough for the trees of big
-/// meshes: `bench/rays.sh`'s 1M triangles need 78 entries, and with a 64-entry array they
-/// took a heap stack, allocated and freed per ray (3.5% of incoherent closest-hit time in
-/// `vec!` alone, `perf report`).
-pub(super) const INLINE_STACK: usize = 128;
-/// The inline stack of a shallow tree (up to 4 inner levels).
-pub(super) const SMALL_STACK: usize = 32;
 /// Entries the traversal stack can ever need: each level pushes at most `WIDTH - 1` more.
-const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
+pub(super) const MAX_STACK: usize = (WIDTH - 1) * MAX_DEPTH + WIDTH;
+
+/// A query's traversal stack, on the call stack and big enough for any tree (8 KiB). Its
+/// slots are left uninitialised until pushed, so a query pays only for what it uses: the
+/// earlier stacks, zeroed per query, were sized by the tree to keep that cost down, and still
+/// cost 1.5 KiB of `memset` per ray on a 1M-triangle mesh (4.6% of incoherent closest-hit
+/// time on a 10k-triangle one, `perf report`).
+pub(super) type TraversalStack<T> = arrayvec::ArrayVec<T, MAX_STACK>;
 
 /// Trees of more bytes (nodes and triangle blocks) than about a core's L2 cache prefetch the
 /// nodes and blocks the traversal pushes, so their cache misses overlap the work on nearer
@@ -89,15 +86,6 @@ struct Entry {
     child: u32,
     count: u32,
     t_near: f32,
-}
-
-impl Entry {
-    /// The filler of unused stack slots, a constant so the compiler zeroes the array in bulk.
-    const ZERO: Self = Self {
-        child: 0,
-        count: 0,
-        t_near: 0.0,
-    };
 }
 
 /// The per-ray constants of the box test.
@@ -300,8 +288,7 @@ impl WideBvh {
         ((fixed + per_primitive) * primitives as f64).ceil() as u64
     }
 
-    /// Traversal stack entries a query on this tree can need (more than [`INLINE_STACK`]
-    /// puts the stack on the heap).
+    /// Traversal stack entries a query on this tree can need (at most [`MAX_STACK`]).
     #[must_use]
     pub fn traversal_stack_size(&self) -> usize {
         self.stack_size
@@ -479,28 +466,13 @@ impl WideBvh {
             prim_indices: &self.prim_indices,
         };
         let r = RayBoxes::new(ray);
-        // Only the one array the tree needs is zeroed, from a constant so that it is done
-        // with wide stores (a small scene's stack is a few dozen bytes; zeroing all 64
-        // entries was 3% of a Cornell box render; zeroing both arrays entry by entry, from
-        // `Entry::default()`, was 7% of the camera rays' time on a 1M-triangle mesh).
-        let (mut small, mut inline, mut heap);
-        let stack: &mut [Entry] = if self.stack_size <= SMALL_STACK {
-            small = [Entry::ZERO; SMALL_STACK];
-            &mut small
-        } else if self.stack_size <= INLINE_STACK {
-            inline = [Entry::ZERO; INLINE_STACK];
-            &mut inline
-        } else {
-            heap = vec![Entry::ZERO; self.stack_size];
-            &mut heap
-        };
+        let mut stack = TraversalStack::<Entry>::new();
         // `cur` is what is visited next; the stack holds the rest, nearest entry on top.
         let mut cur = Entry {
             child: root,
             count: root_count,
             t_near: 0.0,
         };
-        let mut sp = 0;
         loop {
             if cur.count != INNER {
                 if leaf.visit(&view, ray, cur.child, cur.count, &mut t_max) {
@@ -540,38 +512,36 @@ impl WideBvh {
                         (first, second)
                     };
                     if lanes == 0 {
-                        stack[sp] = farther;
-                        sp += 1;
+                        stack.push(farther);
                         cur = nearer;
                         continue;
                     }
-                    let base = sp;
-                    stack[sp] = farther;
-                    stack[sp + 1] = nearer;
-                    sp += 2;
+                    let base = stack.len();
+                    stack.push(farther);
+                    stack.push(nearer);
                     while lanes != 0 {
                         let e = entry(lanes.trailing_zeros() as usize);
                         lanes &= lanes - 1;
                         if self.prefetch {
                             view.prefetch(e);
                         }
-                        let mut j = sp;
+                        // Insertion below the nearer entries already on top.
+                        stack.push(e);
+                        let mut j = stack.len() - 1;
                         while j > base && stack[j - 1].t_near < e.t_near {
                             stack[j] = stack[j - 1];
                             j -= 1;
                         }
                         stack[j] = e;
-                        sp += 1;
                     }
                 }
             }
             // The nearest pending entry the ray can still reach.
             loop {
-                if sp == 0 {
+                let Some(next) = stack.pop() else {
                     return false;
-                }
-                sp -= 1;
-                cur = stack[sp];
+                };
+                cur = next;
                 if cur.t_near <= t_max {
                     break;
                 }
@@ -579,16 +549,16 @@ impl WideBvh {
         }
     }
 
-    /// What a query reads: the arrays, the root entry, the traversal stack size and whether
-    /// to prefetch (for the packet queries of [`super::packet`]).
+    /// What a query reads: the arrays, the root entry and whether to prefetch (for the
+    /// packet queries of [`super::packet`]).
     #[inline(always)]
-    pub(super) fn query_parts(&self) -> (View<'_>, Option<(u32, u32)>, usize, bool) {
+    pub(super) fn query_parts(&self) -> (View<'_>, Option<(u32, u32)>, bool) {
         let view = View {
             nodes: &self.nodes,
             blocks: &self.blocks,
             prim_indices: &self.prim_indices,
         };
-        (view, self.root, self.stack_size, self.prefetch)
+        (view, self.root, self.prefetch)
     }
 
     /// Check the tree's invariants against the primitive bounds it was built from: every
