@@ -14,6 +14,7 @@ use rayon::prelude::*;
 
 use glam::{Vec3A, Vec4};
 
+use super::paged::Paged;
 use super::wide::{WideNode, INNER, WIDTH};
 
 use crate::math::Bounds3;
@@ -43,7 +44,8 @@ pub(super) const MAX_DEPTH: usize = MEDIAN_DEPTH as usize + 33;
 /// A primitive during the build, in 32 bytes: its box in two 4-lane vectors (for fast
 /// unions), whose fourth lanes hold the primitive's index, 16 bits in each as a small
 /// float (so the lane arithmetic of the build never meets a denormal or NaN there).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub(super) struct BuildPrim {
     lo: Vec4,
     hi: Vec4,
@@ -124,12 +126,13 @@ impl Box3 {
     }
 }
 
-/// The primitives `0..count` with bounds `bounds_of(i)`, in parallel.
-pub(super) fn build_prims(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Vec<BuildPrim> {
-    (0..count)
-        .into_par_iter()
-        .map(|i| BuildPrim::new(&bounds_of(i), i as u32))
-        .collect()
+/// The primitives `0..count` with bounds `bounds_of(i)`, in parallel. A large array goes in
+/// a memory map advised to use huge pages ([`Paged`]): the build's first touch of 32 MB of
+/// fresh 4 KiB pages for 1M primitives (a page fault each) was a tenth of its time on 2
+/// threads (1M triangles, five alternating rounds: 0.34-0.42 s, mean 0.38, against 0.32-0.35,
+/// mean 0.33).
+pub(super) fn build_prims(count: usize, bounds_of: impl Fn(usize) -> Bounds3 + Sync) -> Paged<BuildPrim> {
+    Paged::from_fn(count, |i| BuildPrim::new(&bounds_of(i), i as u32))
 }
 
 /// Bounds of the primitives and of their (doubled) centroids.
