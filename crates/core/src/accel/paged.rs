@@ -37,14 +37,33 @@ impl<T: Pod + Send + Sync> Paged<T> {
         }
     }
 
-    /// The elements of `v`, moved to a map when they are many.
-    pub fn from_vec(v: Vec<T>) -> Self {
-        match Self::mapped_zeroed(v.len()) {
-            Some(mut paged) => {
-                paged.copy_from_slice(&v);
-                paged
+    /// An empty array with room for `capacity` elements before [`Self::push`] moves them:
+    /// in a map when that many are many (its untouched pages cost nothing, so a generous
+    /// capacity is cheap), else in a `Vec`.
+    pub fn with_capacity(capacity: usize) -> Self {
+        match Self::mapped_zeroed(capacity) {
+            Some(Self::Mapped { map, .. }) => Self::Mapped { map, len: 0 },
+            _ => Self::Heap(Vec::with_capacity(capacity)),
+        }
+    }
+
+    /// Append `x`. A full map moves its elements to one twice as large.
+    pub fn push(&mut self, x: T) {
+        match self {
+            Self::Heap(v) => v.push(x),
+            Self::Mapped { map, len } => {
+                if *len == map.len() / size_of::<T>().max(1) {
+                    let mut larger = Self::with_capacity(2 * *len + 1);
+                    for &y in &bytemuck::cast_slice::<u8, T>(map)[..*len] {
+                        larger.push(y);
+                    }
+                    larger.push(x);
+                    *self = larger;
+                    return;
+                }
+                bytemuck::cast_slice_mut::<u8, T>(map)[*len] = x;
+                *len += 1;
             }
-            None => Self::Heap(v),
         }
     }
 
@@ -132,7 +151,11 @@ mod tests {
         assert!(large.is_mapped());
         assert_eq!(large.len(), n);
         assert!(large.iter().enumerate().all(|(i, &x)| x == i as u32 ^ 0x5a5a));
-        let moved = Paged::from_vec((0..n as u32).collect());
+        let mut moved = Paged::with_capacity(n);
+        assert!(moved.is_mapped() && moved.is_empty());
+        for i in 0..n as u32 {
+            moved.push(i);
+        }
         assert!(moved.is_mapped());
         assert!(moved.iter().enumerate().all(|(i, &x)| x == i as u32));
         // As `WideBvh::attach_triangles` appends blocks to those of an earlier call.
@@ -148,5 +171,20 @@ mod tests {
         copy[5] = 1;
         assert_eq!((copy[5], joined[5]), (1, 15));
         assert_eq!(Paged::<u32>::default().len(), 0);
+    }
+
+    /// Pushing past the capacity keeps every element, in a map or a `Vec`.
+    #[test]
+    fn pushing_past_the_capacity_keeps_the_elements() {
+        for capacity in [10, PAGED_FROM_BYTES / 8] {
+            let mut v = Paged::with_capacity(capacity);
+            assert_eq!(v.is_mapped(), capacity > 10);
+            let n = 2 * capacity + 3;
+            for i in 0..n as u64 {
+                v.push(i * 7);
+            }
+            assert_eq!(v.len(), n);
+            assert!(v.iter().enumerate().all(|(i, &x)| x == i as u64 * 7));
+        }
     }
 }

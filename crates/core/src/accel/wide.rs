@@ -199,7 +199,7 @@ impl WideBvh {
         let mut prims = wide_build::build_prims(count, bounds_of);
         let (nodes, root, bounds, levels) = wide_build::build_wide(&mut prims, wide_build::Costs::for_count(count));
         let mut bvh = Self {
-            nodes: Paged::from_vec(nodes),
+            nodes,
             prim_indices: prims.par_iter().map(wide_build::BuildPrim::index).collect(),
             root: Some(root),
             bounds,

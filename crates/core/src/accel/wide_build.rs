@@ -246,14 +246,17 @@ fn children(prims: &mut [BuildPrim], base: usize, node: &Decided, costs: Costs) 
 /// Wald et al. 2008, "Getting rid of packets", and Embree's BVH4 and BVH8 builders). The binary tree
 /// is never stored: a child is decided (split and partitioned) when it becomes a lane, and
 /// an inner lane that stays closed starts its own wide node from that decision.
-pub(super) fn build_wide(prims: &mut [BuildPrim], costs: Costs) -> (Vec<WideNode>, (u32, u32), Bounds3, usize) {
+pub(super) fn build_wide(prims: &mut [BuildPrim], costs: Costs) -> (Paged<WideNode>, (u32, u32), Bounds3, usize) {
     let all = bounds_of(prims);
     let root = decide(prims, 0, 0, costs, all);
     let bounds = root.bounds.bounds();
     if root.split.is_none() {
-        return (Vec::new(), (0, root.len as u32), bounds, 0);
+        return (Paged::default(), (0, root.len as u32), bounds, 0);
     }
-    let mut nodes = Vec::with_capacity(prims.len() / 4 + 1);
+    // In a huge-page map for a large tree, first touched 2 MiB at a time and kept as the
+    // tree's array with no copy (a `Vec` touched 4 KiB pages one fault at a time, then was
+    // copied into a map).
+    let mut nodes = Paged::with_capacity(prims.len() / 4 + 1);
     let levels = wide_subtree(prims, root, 1, costs, &mut nodes);
     (nodes, (0, INNER), bounds, levels)
 }
@@ -263,7 +266,13 @@ const PARALLEL_WIDE: usize = 4 * PARALLEL_MIN;
 
 /// Append the nodes of the subtree of `node`, an inner node over exactly `prims` at wide
 /// `level`, to `out`, its root first; returns the deepest inner level below.
-fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Costs, out: &mut Vec<WideNode>) -> usize {
+fn wide_subtree(
+    prims: &mut [BuildPrim],
+    node: Decided,
+    level: usize,
+    costs: Costs,
+    out: &mut Paged<WideNode>,
+) -> usize {
     let base = node.start;
     // Open the inner lane of largest surface area until there are `WIDTH` (kept in a fixed
     // array with their areas).
@@ -321,10 +330,10 @@ fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Cos
             .filter(|&(i, _)| i < len && inner(i))
             .map(|(i, p)| (i, p.expect("a part per lane")))
             .collect();
-        let built: Vec<(usize, Vec<WideNode>, usize)> = jobs
+        let built: Vec<(usize, Paged<WideNode>, usize)> = jobs
             .into_par_iter()
             .map(|(i, part)| {
-                let mut sub = Vec::with_capacity(part.len() / 4 + 1);
+                let mut sub = Paged::with_capacity(part.len() / 4 + 1);
                 let deepest = wide_subtree(part, lanes[i].0, level + 1, costs, &mut sub);
                 (i, sub, deepest)
             })
@@ -332,14 +341,15 @@ fn wide_subtree(prims: &mut [BuildPrim], node: Decided, level: usize, costs: Cos
         for (i, sub, d) in built {
             let offset = out.len() as u32;
             out[index].child[i] = offset;
-            out.extend(sub.into_iter().map(|mut n| {
+            for &n in sub.iter() {
+                let mut n = n;
                 for k in 0..WIDTH {
                     if n.count[k] == INNER {
                         n.child[k] += offset;
                     }
                 }
-                n
-            }));
+                out.push(n);
+            }
             deepest = deepest.max(d);
         }
     } else {
