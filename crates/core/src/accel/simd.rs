@@ -288,8 +288,9 @@ mod tests {
     use super::*;
 
     /// The SSE2 truncation gives `as u32`'s integers on every float in `0..=2^22` near the
-    /// integers and a sample elsewhere, so the conversion behind the `unsafe` block is the one
-    /// the build's binning assumes.
+    /// integers below 64, on a dense sample of the BVH build's bucket range `0..=12` and a
+    /// sparse one above, so the conversion behind the `unsafe` block is the one the build's
+    /// binning assumes.
     #[test]
     fn truncate_lanes_matches_as() {
         let mut checked = 0;
@@ -299,6 +300,8 @@ mod tests {
             assert_eq!(truncate_lanes(v), [v.x as u32, v.y as u32, v.z as u32], "{v:?}");
             let step = if x >= 0.5 && (x - x.round()).abs() < 1e-3 && x < 64.0 {
                 1
+            } else if x <= 12.0 {
+                4096
             } else {
                 65_536
             };
@@ -306,6 +309,10 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 10_000, "{checked}");
+        assert_eq!(
+            truncate_lanes(glam::Vec3A::new(0.0, 11.0, 4_194_304.0)),
+            [0, 11, 4_194_304]
+        );
     }
 
     /// Runs the prefetch loop over no cache line, part of one and several, so every path of

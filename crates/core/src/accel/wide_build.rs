@@ -413,15 +413,6 @@ fn median_split(prims: &mut [BuildPrim], axis: usize) -> usize {
     mid
 }
 
-/// The lanes of `v`, each in `0..=2^22`, rounded down to integers, exactly (truncation, as
-/// the lanes are not negative), with one vector conversion ([`super::simd::truncate_lanes`]:
-/// `as` on each lane saturates lane by lane, and was a fifth of the binning's time; adding
-/// 2^23 and correcting where that rounded up took twelve instructions).
-#[inline]
-fn floor_to_int(v: Vec3A) -> [u32; 3] {
-    super::simd::truncate_lanes(v)
-}
-
 /// What [`sah_split`] decided.
 enum Split {
     /// A leaf is cheaper.
@@ -537,8 +528,11 @@ fn sah_split(prims: &mut [BuildPrim], bounds: Box3, centroids: Box3, costs: Cost
     );
     let max_bucket = Vec3A::splat((buckets - 1) as f32);
     let buckets_of = |p: &BuildPrim| {
-        // In 0..=buckets - 1 (a NaN became the maximum), where rounding down is truncating.
-        floor_to_int(((p.centroid2() - centroids.lo) * scale).min(max_bucket))
+        // In 0..=buckets - 1 (a NaN became the maximum), where rounding down is truncating:
+        // one vector conversion (`as` on each lane saturates lane by lane, and was a fifth of
+        // the binning's time; adding 2^23 and correcting where that rounded up took twelve
+        // instructions).
+        super::simd::truncate_lanes(((p.centroid2() - centroids.lo) * scale).min(max_bucket))
     };
     // One pass bins every primitive, or a sample of a large node's, on all three axes. (Large
     // nodes were binned in parallel before sampling; a sample is at most `2 * SAMPLES`.)
@@ -594,18 +588,19 @@ fn sah_split(prims: &mut [BuildPrim], bounds: Box3, centroids: Box3, costs: Cost
     // keeps the vector in a register (indexing a lane by a run-time axis goes via memory).
     let limit = Vec3A::splat((bucket + 1) as f32);
     let goes_left = |p: &BuildPrim| ((p.centroid2() - centroids.lo) * scale).cmplt(limit).bitmask() >> axis & 1 != 0;
-    if stride > 1 {
-        // The bins saw a sample: the boxes come from the partition's pass.
-        let (mid, sides) = partition::<true>(prims, goes_left);
-        if mid == 0 || mid == prims.len() {
-            return Split::Median(median_split(prims, extent.max_position()));
-        }
-        return Split::Sah(mid, sides);
-    }
-    let (mid, sides) = partition::<false>(prims, goes_left);
+    // When the bins saw only a sample, the sides' boxes come from the partition's pass.
+    let sampled = stride > 1;
+    let (mid, sides) = if sampled {
+        partition::<true>(prims, goes_left)
+    } else {
+        partition::<false>(prims, goes_left)
+    };
     if mid == 0 || mid == prims.len() {
         // Everything on one side (possible with a tiny extent and rounding).
         return Split::Median(median_split(prims, extent.max_position()));
+    }
+    if sampled {
+        return Split::Sah(mid, sides);
     }
     // The sides' boxes are the unions of their bins (min and max are exact).
     let boxes = &bins.boxes[axis];
@@ -695,29 +690,6 @@ fn partition<const BOXES: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Every float in the bucket range, and the integers' neighbours, round down exactly as
-    /// `as u32` truncates them.
-    #[test]
-    fn floor_to_int_truncates_like_as() {
-        let mut checked = 0;
-        let mut x = 0.0f32;
-        while x <= BUCKETS as f32 {
-            let v = Vec3A::new(x, (x * 0.37).min(11.0), f32::from_bits(x.to_bits().saturating_sub(1)));
-            let want = [v.x as u32, v.y as u32, v.z as u32];
-            assert_eq!(floor_to_int(v), want, "{v:?}");
-            // Every float near the integers from 1 on, a sparser sample elsewhere.
-            let step = if x >= 0.5 && (x - x.round()).abs() < 1e-3 {
-                1
-            } else {
-                4096
-            };
-            x = f32::from_bits(x.to_bits() + step);
-            checked += 1;
-        }
-        assert!(checked > 10_000, "{checked}");
-        assert_eq!(floor_to_int(Vec3A::new(0.0, 11.0, 4_194_304.0)), [0, 11, 4_194_304]);
-    }
 
     /// Uniform floats in `[0, 1]` from a xorshift generator started at `seed`.
     fn uniform(seed: u32) -> impl FnMut() -> f32 {
