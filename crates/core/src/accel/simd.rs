@@ -17,7 +17,8 @@
 //! which a test checks.
 //!
 //! The module also holds the cache prefetch hint of the traversal ([`prefetch`]), an SSE
-//! instruction every x86-64 CPU has.
+//! instruction every x86-64 CPU has, and the build's conversion of bucket positions to
+//! integers ([`truncate_lanes`], SSE2).
 //!
 //! AVX-512 is not used: a node's eight boxes fill one 256-bit AVX2 register per plane (two
 //! SSE registers in the portable build), and the leaf blocks are four lanes wide.
