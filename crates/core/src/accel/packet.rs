@@ -31,7 +31,9 @@ const LANE_BIT: [u32; PACKET] = [1, 2, 4, 8, 16, 32, 64, 128];
 /// The per-ray constants of the box test, in lanes.
 struct PacketBoxes {
     o: [Lanes; 3],
-    inv_d: [Lanes; 3],
+    /// The reciprocal directions scaled by the margins, as [`super::wide`]'s `RayBoxes`.
+    inv_near: [Lanes; 3],
+    inv_far: [Lanes; 3],
     /// All bits set in lane `r` of axis `a` when ray `r`'s direction is negative along `a`
     /// (its maxima are its near planes there).
     neg: [[u32; PACKET]; 3],
@@ -41,14 +43,16 @@ impl PacketBoxes {
     fn new(rays: &[Ray; PACKET]) -> Self {
         let mut p = Self {
             o: [[0.0; PACKET]; 3],
-            inv_d: [[0.0; PACKET]; 3],
+            inv_near: [[0.0; PACKET]; 3],
+            inv_far: [[0.0; PACKET]; 3],
             neg: [[0; PACKET]; 3],
         };
         for (r, ray) in rays.iter().enumerate() {
             let inv_d = ray.d.recip();
             for a in 0..3 {
                 p.o[a][r] = ray.o[a];
-                p.inv_d[a][r] = inv_d[a];
+                p.inv_near[a][r] = inv_d[a] * (1.0 - 2.0 * gamma(3));
+                p.inv_far[a][r] = inv_d[a] * (1.0 + 2.0 * gamma(3));
                 p.neg[a][r] = if inv_d[a] < 0.0 { u32::MAX } else { 0 };
             }
         }
@@ -61,7 +65,6 @@ impl PacketBoxes {
     #[allow(clippy::needless_range_loop)] // lane loops read several arrays at the same index
     #[inline(always)]
     fn hit_child(&self, node: &WideNode, i: usize, limit: &Lanes) -> (u32, f32) {
-        let scale = 1.0 + 2.0 * gamma(3);
         let mut near = [0.0f32; PACKET];
         let mut far = *limit;
         for a in 0..3 {
@@ -70,15 +73,12 @@ impl PacketBoxes {
                 let m = self.neg[a][r];
                 let near_plane = f32::from_bits(hi & m | lo & !m);
                 let far_plane = f32::from_bits(lo & m | hi & !m);
-                let tn = (near_plane - self.o[a][r]) * self.inv_d[a][r];
-                let tf = (far_plane - self.o[a][r]) * self.inv_d[a][r] * scale;
+                let tn = (near_plane - self.o[a][r]) * self.inv_near[a][r];
+                let tf = (far_plane - self.o[a][r]) * self.inv_far[a][r];
                 // Written so a NaN on the left keeps the running value.
                 near[r] = if tn > near[r] { tn } else { near[r] };
                 far[r] = if tf < far[r] { tf } else { far[r] };
             }
-        }
-        for n in &mut near {
-            *n *= 1.0 - 2.0 * gamma(3);
         }
         let (n0, n1) = (Vec4::from_slice(&near[..4]), Vec4::from_slice(&near[4..]));
         let (f0, f1) = (Vec4::from_slice(&far[..4]), Vec4::from_slice(&far[4..]));
@@ -120,7 +120,7 @@ fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32,
     };
     let mut alive = active & 0xff;
     for (r, ray) in rays.iter().enumerate() {
-        if !(ray.o.is_finite() && ray.d.is_finite()) {
+        if !(glam::Vec3A::from(ray.o).is_finite() && glam::Vec3A::from(ray.d).is_finite()) {
             alive &= !LANE_BIT[r];
         }
     }

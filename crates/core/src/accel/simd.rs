@@ -150,19 +150,16 @@ impl BoxTest for Avx2Boxes {
 #[inline]
 fn hit_lanes_avx2(r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
     const { assert!(WIDTH == 8, "one 256-bit register per plane") };
-    use crate::math::gamma;
     use std::arch::x86_64::{
         _mm256_cmp_ps, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
         _mm256_set1_ps, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps, _CMP_LE_OQ,
     };
-    let scale = _mm256_set1_ps(1.0 + 2.0 * gamma(3));
     let mut near = _mm256_setzero_ps();
     let mut far = _mm256_set1_ps(t_max);
     for a in 0..3 {
         let near_plane = &node.planes[usize::from(r.neg[a])][a];
         let far_plane = &node.planes[usize::from(!r.neg[a])][a];
         let o = _mm256_set1_ps(r.o[a]);
-        let inv_d = _mm256_set1_ps(r.inv_d[a]);
         // SAFETY: each plane is an array of `WIDTH` = 8 floats, what an unaligned 256-bit
         // load reads.
         let (np, fp) = unsafe {
@@ -171,12 +168,11 @@ fn hit_lanes_avx2(r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u
                 _mm256_loadu_ps(far_plane.as_ptr()),
             )
         };
-        let tn = _mm256_mul_ps(_mm256_sub_ps(np, o), inv_d);
-        let tf = _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(fp, o), inv_d), scale);
+        let tn = _mm256_mul_ps(_mm256_sub_ps(np, o), _mm256_set1_ps(r.inv_near[a]));
+        let tf = _mm256_mul_ps(_mm256_sub_ps(fp, o), _mm256_set1_ps(r.inv_far[a]));
         near = _mm256_max_ps(tn, near);
         far = _mm256_min_ps(tf, far);
     }
-    near = _mm256_mul_ps(near, _mm256_set1_ps(1.0 - 2.0 * gamma(3)));
     let hit = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far)) as u32;
     let mut out = [0.0f32; WIDTH];
     // SAFETY: `out` holds 8 floats, what an unaligned 256-bit store writes.

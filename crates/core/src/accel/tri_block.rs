@@ -85,13 +85,23 @@ impl RayTriangles {
     #[must_use]
     pub fn new(ray: &Ray) -> Self {
         let kz = ray.d.abs().max_position();
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
-        let d = Vec3::new(ray.d[kx], ray.d[ky], ray.d[kz]);
+        // `(kx, ky, kz)` is a rotation of the axes; rotating whole arrays by a match on `kz`
+        // takes selects, where indexing a vector by `kx` and `ky` took a branch per index.
+        let rotate = |v: Vec3| match kz {
+            0 => [v.y, v.z, v.x],
+            1 => [v.z, v.x, v.y],
+            _ => [v.x, v.y, v.z],
+        };
+        let k = match kz {
+            0 => [1, 2, 0],
+            1 => [2, 0, 1],
+            _ => [0, 1, 2],
+        };
+        let d = rotate(ray.d);
         Self {
-            k: [kx, ky, kz],
-            o: [ray.o[kx], ray.o[ky], ray.o[kz]],
-            s: [-d.x / d.z, -d.y / d.z, 1.0 / d.z],
+            k,
+            o: rotate(ray.o),
+            s: [-d[0] / d[2], -d[1] / d[2], 1.0 / d[2]],
         }
     }
 }

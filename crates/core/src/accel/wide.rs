@@ -88,10 +88,14 @@ struct Entry {
     t_near: f32,
 }
 
-/// The per-ray constants of the box test.
+/// The per-ray constants of the box test: the origin, and the reciprocal direction scaled
+/// once per ray by the test's rounding margins (see [`RayBoxes::hit_lanes`]).
 pub(super) struct RayBoxes {
     pub(super) o: [f32; 3],
-    pub(super) inv_d: [f32; 3],
+    /// `(1 / d) (1 - 2 gamma(3))`, for the near planes.
+    pub(super) inv_near: [f32; 3],
+    /// `(1 / d) (1 + 2 gamma(3))`, for the far planes.
+    pub(super) inv_far: [f32; 3],
     pub(super) neg: [bool; 3],
 }
 
@@ -116,25 +120,31 @@ impl BoxTest for PlainBoxes {
 }
 
 impl RayBoxes {
+    #[inline(always)]
     pub(super) fn new(ray: &Ray) -> Self {
         let inv_d = ray.d.recip().to_array();
         Self {
             o: ray.o.to_array(),
-            inv_d,
+            inv_near: inv_d.map(|v| v * (1.0 - 2.0 * gamma(3))),
+            inv_far: inv_d.map(|v| v * (1.0 + 2.0 * gamma(3))),
             neg: inv_d.map(|v| v < 0.0),
         }
     }
 
     /// Slab test of the ray against the node's eight boxes within `(0, t_max)`: entry
-    /// distances and the boxes entered as a mask (bit `i` for lane `i`). The far distances are scaled by
-    /// `1 + 2 gamma(3)` so rounding cannot make a ray miss a box it touches (pbrt-v4
-    /// `Bounds3::IntersectP`), and the near ones by `1 - 2 gamma(3)` so a `t_max` just past
-    /// a hit on a box face does not cull the box. A ray parallel to a slab with its origin on the slab's plane
-    /// gives `0 x inf = NaN`, which the comparisons below ignore: that slab does not limit
-    /// the ray (conservative, so flat boxes are not missed).
+    /// distances and the boxes entered as a mask (bit `i` for lane `i`). The far distances
+    /// are scaled up by `1 + 2 gamma(3)` so rounding cannot make a ray miss a box it touches
+    /// (pbrt-v4 `Bounds3::IntersectP`), and the near ones down by `1 - 2 gamma(3)` so a
+    /// `t_max` just past a hit on a box face does not cull the box. The factors are folded
+    /// into the reciprocal direction, once per ray: a distance is then
+    /// `(plane - o) x (1/d) x factor` with four roundings (the difference, the reciprocal, the
+    /// factor's product and the last product), each at most `2^-24` relative, which the
+    /// margin of `2 gamma(3)`, about `6 x 2^-24`, still covers. A ray parallel to a slab
+    /// with its origin on the slab's plane gives `0 x inf = NaN`, which the comparisons
+    /// below ignore: that slab does not limit the ray (conservative, so flat boxes are not
+    /// missed).
     #[inline(always)]
     pub(super) fn hit_lanes(&self, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
-        let scale = 1.0 + 2.0 * gamma(3);
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
         for a in 0..3 {
@@ -142,8 +152,8 @@ impl RayBoxes {
             let near_plane = &node.planes[usize::from(self.neg[a])][a];
             let far_plane = &node.planes[usize::from(!self.neg[a])][a];
             for i in 0..WIDTH {
-                let tn = (near_plane[i] - self.o[a]) * self.inv_d[a];
-                let tf = (far_plane[i] - self.o[a]) * self.inv_d[a] * scale;
+                let tn = (near_plane[i] - self.o[a]) * self.inv_near[a];
+                let tf = (far_plane[i] - self.o[a]) * self.inv_far[a];
                 // Written so a NaN on the left keeps the running value.
                 near[i] = if tn > near[i] { tn } else { near[i] };
                 far[i] = if tf < far[i] { tf } else { far[i] };
@@ -151,9 +161,6 @@ impl RayBoxes {
         }
         let mut hit = 0;
         for i in 0..WIDTH {
-            // The entry distance shrunk by as much: a hit on the box's face is found
-            // even when `t_max` is within rounding of it.
-            near[i] *= 1.0 - 2.0 * gamma(3);
             hit |= u32::from(near[i] <= far[i]) << i;
         }
         (near, hit)
@@ -457,7 +464,8 @@ impl WideBvh {
         let Some((root, root_count)) = self.root else {
             return false;
         };
-        if !(ray.o.is_finite() && ray.d.is_finite()) {
+        // Four-lane tests (a compare and a mask each), not six scalar ones.
+        if !(glam::Vec3A::from(ray.o).is_finite() && glam::Vec3A::from(ray.d).is_finite()) {
             return false;
         }
         let view = View {

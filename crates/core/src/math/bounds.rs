@@ -132,16 +132,21 @@ impl Bounds3 {
     #[inline]
     #[must_use]
     pub fn hit(&self, o: glam::Vec3A, inv_d: glam::Vec3A, t_max: f32) -> bool {
-        // SIMD lanes via Vec3A: four-wide arithmetic on the three slabs at once.
-        let t0 = (glam::Vec3A::from(self.min) - o) * inv_d;
-        let t1 = (glam::Vec3A::from(self.max) - o) * inv_d;
+        // SIMD lanes via Vec3A: four-wide arithmetic on the three slabs at once. The
+        // margins scale the reciprocal direction, once (the wide BVH's box test does the same,
+        // `RayBoxes::hit_lanes`): entries shrink by `1 - 2 gamma(3)`, so a `t_max` just past
+        // a hit on a face keeps the box, and exits grow by `1 + 2 gamma(3)`.
+        let inv_near = inv_d * (1.0 - 2.0 * super::gamma(3));
+        let inv_far = inv_d * (1.0 + 2.0 * super::gamma(3));
+        let (min, max) = (glam::Vec3A::from(self.min) - o, glam::Vec3A::from(self.max) - o);
+        let (t0_near, t1_near) = (min * inv_near, max * inv_near);
+        let (t0_far, t1_far) = (min * inv_far, max * inv_far);
         // 0 x inf = NaN for a ray parallel to a slab whose origin lies on the slab's
         // plane: that slab does not limit the ray (conservative, so flat boxes are not missed).
-        let nan = t0.is_nan_mask() | t1.is_nan_mask();
-        let t_near = glam::Vec3A::select(nan, glam::Vec3A::NEG_INFINITY, t0.min(t1));
-        let t_far = glam::Vec3A::select(nan, glam::Vec3A::INFINITY, t0.max(t1) * (1.0 + 2.0 * super::gamma(3)));
-        // The entry shrunk alike, so a `t_max` just past a hit on a face keeps the box.
-        let t_enter = t_near.max_element().max(0.0) * (1.0 - 2.0 * super::gamma(3));
+        let nan = t0_near.is_nan_mask() | t1_near.is_nan_mask();
+        let t_near = glam::Vec3A::select(nan, glam::Vec3A::NEG_INFINITY, t0_near.min(t1_near));
+        let t_far = glam::Vec3A::select(nan, glam::Vec3A::INFINITY, t0_far.max(t1_far));
+        let t_enter = t_near.max_element().max(0.0);
         let t_exit = t_far.min_element().min(t_max);
         t_enter <= t_exit
     }
@@ -173,5 +178,59 @@ mod tests {
             max: Vec3::new(2.0, 1.0, 1.0),
         };
         assert!(!miss.hit(Vec3A::from(o), Vec3A::from(d.recip()), f32::INFINITY));
+    }
+
+    /// Rays that touch a box only at a corner, an edge point or a face point, on a grid of
+    /// eighths where every difference is exact (so the ray passes exactly through the
+    /// point, at `t = 1`), enter the box: with no limit, with the limit exactly at the touch
+    /// and just past it. The rounding margins folded into the reciprocal direction must
+    /// cover the slab test's roundings for these grazing rays.
+    #[test]
+    fn grazing_rays_enter_the_box_at_the_point_they_touch() {
+        let mut seed = 7u32;
+        let mut grid = |range: i32| {
+            seed = seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            ((seed >> 8) as i32 % (2 * range + 1) - range) as f32 / 8.0
+        };
+        for _ in 0..20_000 {
+            let a = Vec3::new(grid(40), grid(40), grid(40));
+            let b = Vec3::new(grid(40), grid(40), grid(40));
+            let bx = Bounds3 {
+                min: a.min(b),
+                max: a.max(b),
+            };
+            // A point of the surface: each coordinate a box plane, or (for an edge or a
+            // face point) inside the box's range on up to two axes.
+            let mut p = Vec3::ZERO;
+            let inside_axes = (grid(8).abs() * 8.0) as usize % 3;
+            for axis in 0..3 {
+                let (lo, hi) = (bx.min[axis], bx.max[axis]);
+                p[axis] = if axis < inside_axes {
+                    (lo + hi) * 0.5
+                } else if grid(1) > 0.0 {
+                    hi
+                } else {
+                    lo
+                };
+            }
+            // An origin outside, away from the box along each axis the point is on a plane of.
+            let mut o = p;
+            for axis in inside_axes..3 {
+                let away = 1.0 + grid(40).abs();
+                o[axis] = if p[axis] == bx.max[axis] {
+                    p[axis] + away
+                } else {
+                    p[axis] - away
+                };
+            }
+            let d = p - o;
+            let inv_d = Vec3A::from(d.recip());
+            for t_max in [f32::INFINITY, 1.0, 1.0 + 1e-6] {
+                assert!(
+                    bx.hit(Vec3A::from(o), inv_d, t_max),
+                    "box {bx:?} ray from {o:?} to {p:?}, t_max {t_max}"
+                );
+            }
+        }
     }
 }
