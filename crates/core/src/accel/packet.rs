@@ -16,8 +16,8 @@
 use glam::Vec4;
 
 use super::tri_block::{RayTriangles, TriangleHit};
-use super::wide::{TraversalStack, View, WideBvh, WideNode, INNER, WIDTH};
-use crate::math::{gamma, Ray};
+use super::wide::{RayBoxes, TraversalStack, View, WideBvh, WideNode, INNER, WIDTH};
+use crate::math::Ray;
 
 /// Rays per packet.
 pub const PACKET: usize = 8;
@@ -47,13 +47,14 @@ impl PacketBoxes {
             inv_far: [[0.0; PACKET]; 3],
             neg: [[0; PACKET]; 3],
         };
+        // Each ray's constants are the one-ray query's, so the two tests cannot drift apart.
         for (r, ray) in rays.iter().enumerate() {
-            let inv_d = ray.d.recip();
+            let one = RayBoxes::new(ray);
             for a in 0..3 {
-                p.o[a][r] = ray.o[a];
-                p.inv_near[a][r] = inv_d[a] * (1.0 - 2.0 * gamma(3));
-                p.inv_far[a][r] = inv_d[a] * (1.0 + 2.0 * gamma(3));
-                p.neg[a][r] = if inv_d[a] < 0.0 { u32::MAX } else { 0 };
+                p.o[a][r] = one.o[a];
+                p.inv_near[a][r] = one.inv_near[a];
+                p.inv_far[a][r] = one.inv_far[a];
+                p.neg[a][r] = if one.neg[a] { u32::MAX } else { 0 };
             }
         }
         p
@@ -120,7 +121,7 @@ fn traverse(bvh: &WideBvh, rays: &[Ray; PACKET], t_max: &mut Lanes, active: u32,
     };
     let mut alive = active & 0xff;
     for (r, ray) in rays.iter().enumerate() {
-        if !(glam::Vec3A::from(ray.o).is_finite() && glam::Vec3A::from(ray.d).is_finite()) {
+        if !ray.is_finite() {
             alive &= !LANE_BIT[r];
         }
     }

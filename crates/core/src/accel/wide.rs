@@ -464,8 +464,7 @@ impl WideBvh {
         let Some((root, root_count)) = self.root else {
             return false;
         };
-        // Four-lane tests (a compare and a mask each), not six scalar ones.
-        if !(glam::Vec3A::from(ray.o).is_finite() && glam::Vec3A::from(ray.d).is_finite()) {
+        if !ray.is_finite() {
             return false;
         }
         let view = View {

@@ -19,6 +19,14 @@ impl Ray {
         Self { o, d }
     }
 
+    /// Whether the origin and direction are finite (two four-lane tests, a compare and a
+    /// mask each, rather than six scalar ones: the BVH queries ask it of every ray).
+    #[inline(always)]
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        glam::Vec3A::from(self.o).is_finite() && glam::Vec3A::from(self.d).is_finite()
+    }
+
     /// The point at parameter `t`.
     #[inline]
     #[must_use]
