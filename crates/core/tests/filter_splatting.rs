@@ -70,11 +70,18 @@ fn threads_tiles_waves_and_windows_give_the_same_bits() {
         );
         assert_eq!(image_bits(&f), image_bits(&whole));
     }
-    // Waves of 2 and 4 samples.
+    // Waves of 2 and 4 samples, and of one sample each (a small image takes a whole
+    // range in one wave: the film must still take each index as its own group).
     let mut s = RenderSession::new(&scene, &opts(2, 7)).unwrap();
     s.advance(0..2, &()).unwrap();
     s.advance(2..6, &()).unwrap();
     assert_eq!(s.film().filtered_sums(), whole.filtered_sums());
+    let mut s = RenderSession::new(&scene, &opts(2, 7)).unwrap();
+    for i in 0..6 {
+        s.advance(i..i + 1, &()).unwrap();
+    }
+    assert_eq!(s.film().filtered_sums(), whole.filtered_sums());
+    assert_eq!(image_bits(s.film()), image_bits(&whole));
     // Two windows (as two machines render them), combined: the samples of each window
     // splat across the cut, and the neighbours' sums add exactly.
     let part = |window: Tile| {

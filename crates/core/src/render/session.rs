@@ -40,8 +40,8 @@ pub struct RenderSession<'s> {
 struct TileResult {
     pixels: Vec<PixelStats>,
     /// Under filter splatting, the camera samples (film position, radiance) for the film's
-    /// filtered sums; empty otherwise.
-    filtered: Vec<Splat>,
+    /// filtered sums, one list per sample index of the wave; empty otherwise.
+    filtered: Vec<Vec<Splat>>,
     splats: Vec<Splat>,
     trace: TraceStats,
     nonfinite: u64,
@@ -228,8 +228,10 @@ impl<'s> RenderSession<'s> {
     /// picks up where the last range left it, so consecutive ranges give the same bytes as
     /// one range covering them. `range` must start where the previous one ended.
     ///
-    /// Work units are tiles of a wave; a wave is the whole range, or one sample index when
-    /// the integrator splats. When the observer's cancel flag is set, the unfinished wave is
+    /// Work units are tiles of a wave; a wave is the whole range, one sample index when the
+    /// integrator splats, or under filter splatting as many as [`filter_splatting_wave`]
+    /// allows (the film takes each index's samples as a group of its own, so the wave size
+    /// changes nothing in the result). When the observer's cancel flag is set, the unfinished wave is
     /// dropped and [`RenderError::Cancelled`] returned; [`Self::film`] then holds the
     /// completed waves, and the render can be continued from [`Self::next_sample`].
     pub fn advance(&mut self, range: Range<u32>, observer: &dyn RenderObserver) -> Result<RenderStats, RenderError> {
@@ -246,12 +248,17 @@ impl<'s> RenderSession<'s> {
             threads: self.threads,
             ..Default::default()
         };
-        // Splats (of light paths or of filtered camera samples) land on other tiles' pixels:
-        // one sample index per wave, so that they are committed before the next.
-        let wave = if self.integrator.splats() || splatting(self.scene) {
+        // Light-path splats land on other tiles' pixels: one sample index per wave, so that
+        // they are committed before the next. Filtered camera samples are committed index by
+        // index after each wave.
+        let len = range.end.saturating_sub(range.start).max(1);
+        let wave = if self.integrator.splats() {
             1
+        } else if splatting(self.scene) {
+            let margin: u64 = self.margin_tiles.iter().map(Tile::pixel_count).sum();
+            filter_splatting_wave(len, pixels + margin)
         } else {
-            range.end.saturating_sub(range.start).max(1)
+            len
         };
         let mut s = range.start;
         while s < range.end {
@@ -360,11 +367,6 @@ impl<'s> RenderSession<'s> {
         let (film, filter, pool) = (&mut self.film, &self.scene.filter, &self.pool);
         stats.dropped_splats += pool.install(|| commit_splats(film, &results, filter));
         if splatting {
-            let samples: Vec<Splat> = results
-                .iter()
-                .chain(&margin)
-                .flat_map(|r| r.filtered.iter().copied())
-                .collect();
             let w = &self.window;
             let window = Footprint {
                 x0: w.x0,
@@ -372,9 +374,18 @@ impl<'s> RenderSession<'s> {
                 y0: w.y0,
                 y1: w.y1,
             };
-            // Samples dropped here carried a huge radiance or fell where the filter (narrower
-            // than a pixel) reaches no pixel centre: they count like dropped splats.
-            stats.dropped_splats += pool.install(|| film.add_filtered(&samples, filter, window));
+            // One group per sample index, in index order.
+            for j in 0..n as usize {
+                let samples: Vec<Splat> = results
+                    .iter()
+                    .chain(&margin)
+                    .flat_map(|r| r.filtered[j].iter().copied())
+                    .collect();
+                // Samples dropped here carried a huge radiance or fell where the filter
+                // (narrower than a pixel) reaches no pixel centre: they count like dropped
+                // splats.
+                stats.dropped_splats += pool.install(|| film.add_filtered(&samples, filter, window));
+            }
         }
         self.film.add_samples_per_pixel(n);
         Ok(())
@@ -424,6 +435,19 @@ fn splatting(scene: &Scene) -> bool {
     scene.reconstruction == Reconstruction::FilterSplatting
 }
 
+/// Most camera samples a wave of filter splatting holds (20 bytes each, listed per tile
+/// and then gathered per index: at most 40 MiB beyond the film's per-pixel memory).
+const FILTER_WAVE_SAMPLES: u64 = 1 << 20;
+
+/// Sample indices per wave under filter splatting, for a range of `len` indices over
+/// `pixels` pixels: as many as [`FILTER_WAVE_SAMPLES`] allows, at least one. Several per
+/// wave let a tile take a pixel's samples one after another (the Sobol' sampler reuses
+/// the pixel's high index digits across them) and spare the threads a barrier per index.
+fn filter_splatting_wave(len: u32, pixels: u64) -> u32 {
+    let fits = (FILTER_WAVE_SAMPLES / pixels.max(1)).max(1);
+    u32::try_from(fits).map_or(len, |fits| fits.min(len))
+}
+
 /// Continue the tile's accumulators (`pixels`, in tile order) with the given samples, or
 /// under filter splatting (`pixels` then empty), list the samples for the film's filtered
 /// sums.
@@ -440,12 +464,16 @@ fn render_tile(
     let mut trace = TraceStats::default();
     let mut nonfinite = 0;
     let mut splats = Vec::new();
-    let mut filtered = Vec::new();
     let splatting = splatting(scene);
+    let mut filtered = if splatting {
+        vec![Vec::with_capacity(tile.pixel_count() as usize); samples.len()]
+    } else {
+        Vec::new()
+    };
     for i in 0..tile.pixel_count() as usize {
         let (x, y) = tile.pixel_at(i);
         let pixel = UVec2::new(x, y);
-        for s in samples.clone() {
+        for (j, s) in samples.clone().enumerate() {
             sampler.start_pixel_sample(pixel, s);
             let u = sampler.get_pixel_2d();
             if splatting {
@@ -454,7 +482,7 @@ fn render_tile(
                 let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
                 let l = integrator.li(scene, ray, &mut sampler, &mut trace, &mut splats);
                 if l.is_finite() {
-                    filtered.push(Splat { p_film, l });
+                    filtered[j].push(Splat { p_film, l });
                 } else {
                     nonfinite += 1;
                 }
@@ -486,6 +514,16 @@ fn render_tile(
 mod tests {
     use super::*;
     use crate::color::Rgb;
+
+    #[test]
+    fn filter_splatting_waves_hold_a_bounded_number_of_samples() {
+        assert_eq!(filter_splatting_wave(128, 256 * 256), 16);
+        assert_eq!(filter_splatting_wave(7, 256 * 256), 7);
+        assert_eq!(filter_splatting_wave(128, 1024 * 1024), 1);
+        assert_eq!(filter_splatting_wave(128, 4096 * 4096), 1);
+        assert_eq!(filter_splatting_wave(u32::MAX, 0), 1 << 20);
+        assert_eq!(filter_splatting_wave(1, 1), 1);
+    }
 
     /// Splats made by each pixel's sample, deterministic in (pixel, k) and landing far from
     /// the pixel, with magnitudes spread so that the order of float additions would show.
