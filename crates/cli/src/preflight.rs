@@ -28,7 +28,8 @@ pub const MAX_DEPTH: u32 = 100_000;
 pub const FILM_BYTES_PER_PIXEL: u64 = 184;
 /// What filter splatting adds per pixel: its filtered sums (11 i128, 176 bytes), the wave's
 /// camera samples, listed per tile and then gathered (2 x 20 bytes), and the wave's group
-/// sums (4 i128, 64 bytes).
+/// sums (4 i128, 64 bytes). (A wave of several sample indices, on images under 2^20
+/// pixels, lists at most 20 MiB more: see the render session's `FILTER_WAVE_SAMPLES`.)
 pub const FILTERED_BYTES_PER_PIXEL: u64 = 280;
 
 /// Bytes a film pixel of `desc` costs while rendering and writing.

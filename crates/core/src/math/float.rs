@@ -98,7 +98,7 @@ fn step_away_lanes(v: [f32; 4], o: [f32; 4]) -> [f32; 4] {
 /// as integers: `k = bits` for a positive sign, `-(bits & 0x7fff_ffff)` for a negative one
 /// (both zeros are 0), so a step is `k +- 1`; no step (`o` zero or NaN), a step past an
 /// infinity, or one from a NaN keeps `v`, as the two functions do.
-/// (The one-lane reference [`step_away_lanes`] is tested against.)
+/// This is the one-lane reference that [`step_away_lanes`] is tested against.
 #[cfg(test)]
 fn step_away(v: f32, o: f32) -> f32 {
     const INF_KEY: u32 = 0x7f80_0000;

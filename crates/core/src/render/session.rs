@@ -374,13 +374,16 @@ impl<'s> RenderSession<'s> {
                 y0: w.y0,
                 y1: w.y1,
             };
-            // One group per sample index, in index order.
+            // One group per sample index, in index order, gathered into one reused list.
+            let mut samples: Vec<Splat> = Vec::new();
             for j in 0..n as usize {
-                let samples: Vec<Splat> = results
-                    .iter()
-                    .chain(&margin)
-                    .flat_map(|r| r.filtered[j].iter().copied())
-                    .collect();
+                samples.clear();
+                samples.extend(
+                    results
+                        .iter()
+                        .chain(&margin)
+                        .flat_map(|r| r.filtered[j].iter().copied()),
+                );
                 // Samples dropped here carried a huge radiance or fell where the filter
                 // (narrower than a pixel) reaches no pixel centre: they count like dropped
                 // splats.
@@ -435,8 +438,9 @@ fn splatting(scene: &Scene) -> bool {
     scene.reconstruction == Reconstruction::FilterSplatting
 }
 
-/// Most camera samples a wave of filter splatting holds (20 bytes each, listed per tile
-/// and then gathered per index: at most 40 MiB beyond the film's per-pixel memory).
+/// Most camera samples a wave of filter splatting holds (20 bytes each). They are listed per
+/// tile and gathered one index at a time, so a wave of several indices costs at most 20 MiB
+/// beyond the one index per pixel that the preflight's per-pixel figure counts.
 const FILTER_WAVE_SAMPLES: u64 = 1 << 20;
 
 /// Sample indices per wave under filter splatting, for a range of `len` indices over
@@ -466,7 +470,11 @@ fn render_tile(
     let mut splats = Vec::new();
     let splatting = splatting(scene);
     let mut filtered = if splatting {
-        vec![Vec::with_capacity(tile.pixel_count() as usize); samples.len()]
+        // (Not `vec![..; n]`: a cloned `Vec` does not keep its capacity.)
+        samples
+            .clone()
+            .map(|_| Vec::with_capacity(tile.pixel_count() as usize))
+            .collect()
     } else {
         Vec::new()
     };
