@@ -138,6 +138,9 @@ pub struct Bsdf {
     frame: Frame,
     ng: Vec3,
     bxdf: Bxdf,
+    /// `bxdf.flags()`, asked several times per path vertex (a call through the lobe enum
+    /// each time); kept in step by every change of the lobe ([`Self::regularize`]).
+    flags: BxdfFlags,
     /// Mitsuba's shadowing of the light side under a normal or bump map.
     shadowing: Option<BumpShadowing>,
 }
@@ -151,11 +154,13 @@ impl Bsdf {
 
     /// A BSDF with shading normal `ns`, tangent `dpdu` and geometric normal `ng` (either
     /// orientation: only the side of a direction relative to the surface is used).
+    #[inline]
     #[must_use]
     pub fn new(ns: Vec3, dpdu: Vec3, ng: Vec3, bxdf: Bxdf) -> Self {
         Self {
             frame: Frame::from_zx(ns, dpdu),
             ng,
+            flags: bxdf.flags(),
             bxdf,
             shadowing: None,
         }
@@ -189,7 +194,8 @@ impl Bsdf {
     /// Kinds of scattering.
     #[must_use]
     pub fn flags(&self) -> BxdfFlags {
-        self.bxdf.flags()
+        debug_assert_eq!(self.flags, self.bxdf.flags());
+        self.flags
     }
 
     /// Roughen the microfacet distributions of conductors, dielectrics and coats (pbrt-v4
@@ -209,6 +215,8 @@ impl Bsdf {
             // (A rough plastic's coat tables belong to its roughness: left as it is.)
             Bxdf::Diffuse(_) | Bxdf::ThinDielectric(_) | Bxdf::DiffuseTransmission(_) | Bxdf::Plastic(_) => {}
         }
+        // A roughened lobe may no longer be specular.
+        self.flags = self.bxdf.flags();
     }
 
     /// `f(wo, wi)` for world-space directions; zero when the geometric normal and the
@@ -253,7 +261,7 @@ impl Bsdf {
     #[must_use]
     pub fn sample_f_mode(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
         let wo_l = self.frame.to_local(wo);
-        if wo_l.z == 0.0 || self.bxdf.flags().is_empty() {
+        if wo_l.z == 0.0 || self.flags().is_empty() {
             return None;
         }
         let bs = match (mode, &self.bxdf) {

@@ -234,6 +234,12 @@ pub struct OwenSobolSampler {
     /// sample (they were about 4% of a Sobol' render's instructions).
     high: [u32; SOBOL_DIMENSIONS],
     high_valid: u64,
+    /// Each table dimension's scrambling hash (`hash_u64s(&[pixel_hash, dim])`), valid where
+    /// `hash_valid` has the dimension's bit. It depends on the pixel alone, so a pixel's
+    /// consecutive samples share it: one mixing step per dimension and pixel instead of
+    /// one per value (the hash was a fifth of the sampler's instructions).
+    dim_hash: [u64; SOBOL_DIMENSIONS],
+    hash_valid: u64,
 }
 
 // `high_valid` has one bit per table dimension.
@@ -254,6 +260,8 @@ impl OwenSobolSampler {
             dimension: 0,
             high: [0; SOBOL_DIMENSIONS],
             high_valid: 0,
+            dim_hash: [0; SOBOL_DIMENSIONS],
+            hash_valid: 0,
         }
     }
 
@@ -273,6 +281,9 @@ impl OwenSobolSampler {
         if sobol_index >> 8 != self.sobol_index >> 8 {
             self.high_valid = 0;
         }
+        if pixel_hash != self.pixel_hash {
+            self.hash_valid = 0;
+        }
         self.pixel_hash = pixel_hash;
         self.dim_hash_state = hash_absorb(mix_bits(2), pixel_hash);
         self.sample_index = sample_index;
@@ -281,24 +292,32 @@ impl OwenSobolSampler {
     }
 
     /// Dimension `dim` of the current sample.
-    #[inline]
+    #[inline(always)]
     fn sample(&mut self, dim: u32) -> f32 {
-        let dim_hash = hash_absorb(self.dim_hash_state, u64::from(dim));
-        debug_assert_eq!(dim_hash, hash_u64s(&[self.pixel_hash, u64::from(dim)]));
         // The point's digits bit-reversed, as the scrambling wants them.
-        let x_reversed = if (dim as usize) < SOBOL_DIMENSIONS {
+        let (x_reversed, dim_hash) = if (dim as usize) < SOBOL_DIMENSIONS {
             let d = dim as usize;
+            if self.hash_valid & 1 << d == 0 {
+                self.dim_hash[d] = hash_absorb(self.dim_hash_state, u64::from(dim));
+                self.hash_valid |= 1 << d;
+            }
+            let dim_hash = self.dim_hash[d];
+            debug_assert_eq!(dim_hash, hash_u64s(&[self.pixel_hash, u64::from(dim)]));
             if self.high_valid & 1 << d == 0 {
                 self.high[d] = high_digits_reversed(self.sobol_index, d);
                 self.high_valid |= 1 << d;
             }
             let x = self.high[d] ^ low_digits_reversed(self.sobol_index, d);
             debug_assert_eq!(x, sobol_u32_reversed(self.sobol_index, d));
-            x
+            (x, dim_hash)
         } else {
             // Padding: a van der Corput point (the reversed digits of the index) with an
             // index shuffle of its own.
-            nested_uniform_scramble(self.sample_index, (dim_hash >> 32) as u32)
+            let dim_hash = hash_absorb(self.dim_hash_state, u64::from(dim));
+            (
+                nested_uniform_scramble(self.sample_index, (dim_hash >> 32) as u32),
+                dim_hash,
+            )
         };
         to_unit(nested_uniform_scramble_reversed(x_reversed, dim_hash as u32))
     }
