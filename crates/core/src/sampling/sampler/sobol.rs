@@ -242,7 +242,7 @@ pub struct OwenSobolSampler {
     hash_valid: u64,
 }
 
-// `high_valid` has one bit per table dimension.
+// `high_valid` and `hash_valid` have one bit per table dimension.
 const _: () = assert!(SOBOL_DIMENSIONS <= u64::BITS as usize);
 
 impl OwenSobolSampler {
