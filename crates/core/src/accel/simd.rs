@@ -1,5 +1,6 @@
-//! The instruction set the BVH queries run with, chosen at run time, and the only module of
-//! the workspace with `unsafe` code.
+//! The instruction set the BVH queries run with, chosen at run time, and one of the two
+//! modules of the workspace with `unsafe` code (the other is `math::sse2`, one SSE2 step of
+//! the ray-origin offset, which sits below this layer).
 //!
 //! The traversal and leaf kernels ([`super::wide`], [`super::tri_block`]) are written once
 //! as fixed-size lane arithmetic and compiled twice: for any x86-64 (SSE2) or other CPU,

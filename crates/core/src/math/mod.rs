@@ -7,6 +7,8 @@ mod frame;
 pub mod quadrature;
 mod ray;
 mod rounding;
+#[cfg(target_arch = "x86_64")]
+mod sse2;
 mod transform;
 
 pub use bounds::Bounds3;
