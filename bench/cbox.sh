@@ -48,6 +48,9 @@ rel_mse() { # image: relative MSE against the shared Mitsuba reference (12,800 s
 }
 
 echo "Cornell box ${RES}x${RES}, ${SPP} spp, max depth 65, ${THREADS} threads; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%Y-%m-%dT%H:%MZ)"
+# The CPU and its vector extensions: Mitsuba's llvm variant runs 16 paths per instruction
+# where AVX-512 is present, 8 with AVX2, so ratios are comparable only between like CPUs.
+echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'); $(grep -o -w -E 'avx2|avx512f|avx512vl' /proc/cpuinfo | sort -u | tr '\n' ' ')"
 # Mitsuba's script uses its independent sampler and its path tracer's Russian roulette (from
 # the fifth bounce, survival min(max throughput, 0.95)) and splats each sample through its
 # tent filter: the `splat rr=mitsuba` row is like for like. The first row is mcrender's

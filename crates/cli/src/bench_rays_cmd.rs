@@ -71,6 +71,8 @@ pub enum IsaArg {
     Portable,
     /// AVX2 and FMA (x86-64).
     Avx2,
+    /// AVX-512 F and VL, AVX2 and FMA (x86-64).
+    Avx512,
 }
 
 impl From<IsaArg> for Isa {
@@ -78,6 +80,7 @@ impl From<IsaArg> for Isa {
         match a {
             IsaArg::Portable => Isa::Portable,
             IsaArg::Avx2 => Isa::Avx2,
+            IsaArg::Avx512 => Isa::Avx512,
         }
     }
 }

@@ -135,6 +135,13 @@ fn hits_agree_with_brute_force() {
     } else {
         eprintln!("NOT TESTED: --isa avx2 (this CPU has no AVX2 and FMA)");
     }
+    #[cfg(target_arch = "x86_64")]
+    if mcrender_core::accel::Isa::Avx512.is_supported() {
+        configs.push(vec!["--isa", "avx512"]);
+        configs.push(vec!["--packets", "--isa", "avx512"]);
+    } else {
+        eprintln!("NOT TESTED: --isa avx512 (this CPU has no AVX-512 F and VL)");
+    }
     for config in &configs {
         let accel = config.join(" ");
         for threads in ["1", "2"] {

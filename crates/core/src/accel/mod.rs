@@ -10,7 +10,7 @@ mod tri_block;
 mod wide;
 mod wide_build;
 
+pub use crate::math::simd::Isa;
 pub use packet::PACKET;
-pub use simd::Isa;
 pub use tri_block::{TriBlock, TriangleHit};
 pub use wide::{WideBvh, WideNode, WIDTH};

@@ -17,9 +17,11 @@ use bytemuck::Zeroable;
 use rayon::prelude::*;
 
 use super::paged::Paged;
-use super::simd::{self, Isa};
+use super::simd;
 use super::tri_block::{self, RayTriangles, TriBlock, TriangleHit};
 use super::wide_build::{self, MAX_DEPTH};
+use crate::math::simd::slab::SlabRay;
+use crate::math::simd::{Isa, Supported};
 use crate::math::{gamma, Bounds3, Ray, Vec3};
 
 /// Children per node.
@@ -89,20 +91,15 @@ struct Entry {
 }
 
 /// The per-ray constants of the box test: the origin, and the reciprocal direction scaled
-/// once per ray by the test's rounding margins (see [`RayBoxes::hit_lanes`]).
-pub(super) struct RayBoxes {
-    pub(super) o: [f32; 3],
-    /// `(1 / d) (1 - 2 gamma(3))`, for the near planes.
-    pub(super) inv_near: [f32; 3],
-    /// `(1 / d) (1 + 2 gamma(3))`, for the far planes.
-    pub(super) inv_far: [f32; 3],
-    pub(super) neg: [bool; 3],
-}
+/// once per ray by the test's rounding margins (see [`RayBoxes::hit_lanes`]):
+/// `inv_near = (1 / d) (1 - 2 gamma(3))` for the near planes, `inv_far = (1 / d)
+/// (1 + 2 gamma(3))` for the far ones.
+pub(super) type RayBoxes = SlabRay;
 
 /// The box test of a node as an instruction set runs it: [`PlainBoxes`] is
-/// [`RayBoxes::hit_lanes`] as the compiler vectorises it, `simd::Avx2Boxes` the same
-/// arithmetic written in AVX2 (the compiler split the far planes' part into pieces of
-/// lanes with shuffles between them). Both give the same bits.
+/// [`RayBoxes::hit_lanes`] as the compiler vectorises it, `simd::Avx2Boxes` and
+/// `simd::Avx512Boxes` the same arithmetic written in intrinsics
+/// ([`crate::math::simd::slab`]). All give the same bits.
 pub(super) trait BoxTest: Copy {
     /// [`RayBoxes::hit_lanes`].
     fn hit_lanes(self, r: &RayBoxes, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32);
@@ -182,7 +179,7 @@ pub struct WideBvh {
     /// Precomputed leaf triangles ([`Self::attach_triangles`]).
     blocks: Paged<TriBlock>,
     /// The instruction set of the `*_triangles` queries.
-    isa: Isa,
+    isa: Supported,
     /// True when the tree is too large to stay in cache, so the traversal prefetches the
     /// children it pushes (see [`PREFETCH_FROM_BYTES`]).
     prefetch: bool,
@@ -212,7 +209,7 @@ impl WideBvh {
             bounds,
             stack_size: (1 + (WIDTH - 1) * levels).min(MAX_STACK),
             blocks: Paged::default(),
-            isa: Isa::best(),
+            isa: Supported::best(),
             prefetch: false,
         };
         bvh.prefetch = bvh.is_larger_than_a_cache();
@@ -310,16 +307,19 @@ impl WideBvh {
     /// The instruction set the `*_triangles` queries run with ([`Isa::best`] when built).
     #[must_use]
     pub fn isa(&self) -> Isa {
+        self.isa.isa()
+    }
+
+    /// [`Self::isa`] with the proof that this CPU has it.
+    pub(super) fn supported_isa(&self) -> Supported {
         self.isa
     }
 
     /// Run the queries with `isa` (to compare or test the kernels); refused, leaving the
     /// tree as it is, when this CPU does not support it.
     pub fn set_isa(&mut self, isa: Isa) -> Result<(), String> {
-        if !isa.is_supported() {
-            return Err(format!("this CPU does not support the {} instruction set", isa.name()));
-        }
-        self.isa = isa;
+        self.isa = Supported::new(isa)
+            .ok_or_else(|| format!("this CPU does not support the {} instruction set", isa.name()))?;
         Ok(())
     }
 
@@ -764,11 +764,11 @@ impl View<'_> {
     pub(super) fn prefetch_child(&self, child: u32, count: u32) {
         if count == INNER {
             if let Some(node) = self.nodes.get(child as usize) {
-                simd::prefetch(node);
+                crate::math::simd::prefetch(node);
             }
         } else if count & BLOCK != 0 {
             if let Some(block) = self.blocks.get(child as usize) {
-                simd::prefetch(block);
+                crate::math::simd::prefetch(block);
             }
         }
     }

@@ -532,7 +532,7 @@ fn sah_split(prims: &mut [BuildPrim], bounds: Box3, centroids: Box3, costs: Cost
         // one vector conversion (`as` on each lane saturates lane by lane, and was a fifth of
         // the binning's time; adding 2^23 and correcting where that rounded up took twelve
         // instructions).
-        super::simd::truncate_lanes(((p.centroid2() - centroids.lo) * scale).min(max_bucket))
+        crate::math::simd::truncate_lanes(((p.centroid2() - centroids.lo) * scale).min(max_bucket))
     };
     // One pass bins every primitive, or a sample of a large node's, on all three axes. (Large
     // nodes were binned in parallel before sampling; a sample is at most `2 * SAMPLES`.)

@@ -63,12 +63,12 @@ pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
 
 /// `step_away` (the tests' reference) in four lanes at once: [`next_float_up`] of `v` where
 /// `o > 0`, [`next_float_down`] where `o < 0`, else `v`. On x86-64 in SSE2 intrinsics
-/// (`super::sse2`), elsewhere [`step_away_lanes_portable`]; the same bits (tested).
+/// (`super::simd::sse2`), elsewhere [`step_away_lanes_portable`]; the same bits (tested).
 #[inline(always)]
 fn step_away_lanes(v: [f32; 4], o: [f32; 4]) -> [f32; 4] {
     #[cfg(target_arch = "x86_64")]
     {
-        super::sse2::step_away_lanes(v, o)
+        super::simd::sse2::step_away_lanes(v, o)
     }
     #[cfg(not(target_arch = "x86_64"))]
     {

@@ -7,8 +7,7 @@ mod frame;
 pub mod quadrature;
 mod ray;
 mod rounding;
-#[cfg(target_arch = "x86_64")]
-mod sse2;
+pub mod simd;
 mod transform;
 
 pub use bounds::Bounds3;

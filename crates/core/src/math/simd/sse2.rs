@@ -1,21 +1,16 @@
-//! One step of the ray-origin offset written in SSE2 intrinsics (x86-64 only), and with
-//! `accel::simd` one of the two modules of the workspace with `unsafe` code.
+//! One step of the ray-origin offset written in SSE2 intrinsics (x86-64 only).
 //!
 //! `float::offset_ray_origin` rounds the three coordinates of a moved origin one float
 //! away from the surface. Left to the compiler, its lane-wise integer code came out as two
 //! vector lanes and one scalar lane (the fourth lane is unused), and a shadow ray's two
-//! offsets took about 276 instructions; here all lanes go through one SSE2 sequence. The
-//! function lives at the math layer because rays are spawned there; `accel::simd` sits
-//! above it and cannot be imported from here.
+//! offsets took about 276 instructions; here all lanes go through one SSE2 sequence.
 
-#![allow(unsafe_code)]
-
-/// [`super::float`]'s `step_away_lanes_portable`, the same integer steps lane for lane in
+/// `math::float`'s `step_away_lanes_portable`, the same integer steps lane for lane in
 /// SSE2: `next_float_up(v)` where `o > 0`, `next_float_down(v)` where `o < 0`, else `v`.
 /// Tested bit for bit against the portable lanes and the one-lane reference on zeros,
 /// infinities, NaN, denormals and the largest floats (`float::tests`).
 #[inline(always)]
-pub(super) fn step_away_lanes(v: [f32; 4], o: [f32; 4]) -> [f32; 4] {
+pub(in crate::math) fn step_away_lanes(v: [f32; 4], o: [f32; 4]) -> [f32; 4] {
     // SAFETY: the function only needs SSE2, which every x86-64 CPU has (it is part of the
     // architecture's baseline, enabled in every x86-64 build); it reads and writes no memory.
     unsafe { step_away_lanes_sse2(v, o) }
