@@ -57,11 +57,12 @@ pub(super) fn closest_hit_packet<H>(
     test: impl FnMut(usize, u32, &Ray, f32) -> Option<(f32, H)>,
     on_triangle: impl FnMut(usize, u32, TriangleHit) -> H,
 ) -> [Option<(u32, H)>; PACKET] {
-    let query = || closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle);
+    // One closure per arm: a closure with one call site is inlined into its `run`, and so
+    // compiled with its instruction set.
     match bvh.supported_isa() {
-        Supported::Avx512(cpu) => cpu.run(query),
-        Supported::Avx2(cpu) => cpu.run(query),
-        Supported::Portable => query(),
+        Supported::Avx512(cpu) => cpu.run(|| closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle)),
+        Supported::Avx2(cpu) => cpu.run(|| closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle)),
+        Supported::Portable => closest_hit_packet_impl(bvh, rays, t_max, active, test, on_triangle),
     }
 }
 
@@ -75,11 +76,10 @@ pub(super) fn any_hit_packet(
     active: u32,
     test: impl FnMut(usize, u32, &Ray, f32) -> bool,
 ) -> u32 {
-    let query = || any_hit_packet_impl(bvh, rays, t_max, active, test);
     match bvh.supported_isa() {
-        Supported::Avx512(cpu) => cpu.run(query),
-        Supported::Avx2(cpu) => cpu.run(query),
-        Supported::Portable => query(),
+        Supported::Avx512(cpu) => cpu.run(|| any_hit_packet_impl(bvh, rays, t_max, active, test)),
+        Supported::Avx2(cpu) => cpu.run(|| any_hit_packet_impl(bvh, rays, t_max, active, test)),
+        Supported::Portable => any_hit_packet_impl(bvh, rays, t_max, active, test),
     }
 }
 
