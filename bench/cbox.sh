@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Side-by-side benchmark: the Cornell box at 256x256, same spp and depth, rendered by
-# mcrender and by Mitsuba 3 (llvm_ad_rgb and scalar_rgb) in one run, 2 threads each.
-# Prints one table; the ratio columns are what to compare across machines, not the seconds.
+# mcrender and by Mitsuba 3 (llvm_ad_rgb, scalar_rgb, and llvm_ad_rgb held to AVX2) in one run,
+# 2 threads each. Prints one table; the ratio columns are what to compare across machines (of
+# the same vector extensions: see the CPU line), not the seconds.
 # relMSE is against ../shared/reference/cornell-box-256.exr; efficiency = 1 / (relMSE x time).
 #
 # Usage: bench/cbox.sh [SPP]   (default 256). Needs ../shared (peers/, scenes/) beside the repo.
@@ -62,15 +63,20 @@ mc_sobol_line="$(run_mcrender mc-sobol --sampler sobol)"
 mc_splat_line="$(run_mcrender mc-splat-rr --sampler independent --rr mitsuba --reconstruction splat)"
 mc_sobol_splat_line="$(run_mcrender mc-sobol-splat-rr --sampler sobol --rr mitsuba --reconstruction splat)"
 llvm_json="$(run_mitsuba llvm_ad_rgb || true)"
+# The llvm variant held to AVX2 (8 lanes; bench/mitsuba_avx2.py): on a CPU with AVX-512 it
+# shows how much of its lead is the 16-lane kernels. The ratios stay over the native llvm row.
+llvm_avx2_json="$("$VENV/bin/python" bench/mitsuba_avx2.py "$SHARED/peers/mitsuba_render.py" \
+    --scene "$SHARED/scenes/cornell-box/mitsuba/scene_v3.xml" --res "$RES" --spp "$SPP" --max-depth 65 \
+    --variant llvm_ad_rgb --threads "$THREADS" --out "$OUT/mitsuba-llvm-avx2.exr" 2>/dev/null | tail -n 1 || true)"
 scalar_json="$(run_mitsuba scalar_rgb || true)"
-errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mc-sobol-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
+errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mc-sobol-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb mitsuba-llvm-avx2; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
 
-python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$mc_sobol_splat_line" "$llvm_json" "$scalar_json" <<'PY'
+python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$mc_sobol_splat_line" "$llvm_json" "$scalar_json" "$llvm_avx2_json" <<'PY'
 import json, math, re, sys
 res, spp, errors = int(sys.argv[1]), int(sys.argv[2]), [float(e) for e in sys.argv[3].split()]
-mc_lines, peer_lines = sys.argv[4:9], sys.argv[9:11]
+mc_lines, peer_lines = sys.argv[4:9], sys.argv[9:12]
 names = ["mcrender independent", "mcrender indep. rr=mitsuba", "mcrender sobol", "mcrender splat rr=mitsuba",
-         "mcrender sobol splat rr=mit.", "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb"]
+         "mcrender sobol splat rr=mit.", "mitsuba llvm_ad_rgb", "mitsuba scalar_rgb", "mitsuba llvm, AVX2 only"]
 llvm = len(mc_lines)
 times = []
 for line in mc_lines:
