@@ -196,18 +196,21 @@ impl MaterialDesc {
     /// [`Self::apply_frame`]).
     #[must_use]
     pub fn bsdf(&self, si: &SurfaceInteraction, ctx: &TextureContext) -> Option<Bsdf> {
-        let bxdf = match self {
-            Self::Diffuse(m) => m.bxdf(ctx),
-            Self::Conductor(m) => m.bxdf(ctx),
-            Self::Dielectric(m) => m.bxdf(ctx),
-            Self::ThinDielectric(m) => m.bxdf(),
-            Self::DiffuseTransmission(m) => m.bxdf(ctx),
-            Self::CoatedDiffuse(m) => m.bxdf(ctx),
-            Self::CoatedConductor(m) => m.bxdf(ctx),
-            Self::MetallicRoughness(m) => m.bxdf(ctx),
-            Self::Plastic(m) => m.bxdf(ctx),
-            Self::Mix(_) | Self::NormalMap(_) | Self::BumpMap(_) | Self::Interface => return None,
-        };
-        Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf))
+        // The BSDF is made in each arm, not from one lobe value the arms share: a shared
+        // value is built field by field in memory and then copied in 16-byte loads, each of
+        // which waited for the narrower stores (failed store-to-load forwarding).
+        let with = |bxdf| Some(Bsdf::new(si.ns, si.dpdu, si.n(), bxdf));
+        match self {
+            Self::Diffuse(m) => with(m.bxdf(ctx)),
+            Self::Conductor(m) => with(m.bxdf(ctx)),
+            Self::Dielectric(m) => with(m.bxdf(ctx)),
+            Self::ThinDielectric(m) => with(m.bxdf()),
+            Self::DiffuseTransmission(m) => with(m.bxdf(ctx)),
+            Self::CoatedDiffuse(m) => with(m.bxdf(ctx)),
+            Self::CoatedConductor(m) => with(m.bxdf(ctx)),
+            Self::MetallicRoughness(m) => with(m.bxdf(ctx)),
+            Self::Plastic(m) => with(m.bxdf(ctx)),
+            Self::Mix(_) | Self::NormalMap(_) | Self::BumpMap(_) | Self::Interface => None,
+        }
     }
 }

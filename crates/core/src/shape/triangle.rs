@@ -184,12 +184,17 @@ impl Triangle {
         };
         let uv = b[0] * uvs[0] + b[1] * uvs[1] + b[2] * uvs[2];
         // The shading normal: a flat face's, made once, or the blend of the vertex normals;
-        // none where the mesh has no normals or their blend is zero.
-        let shading = self.flat_ns.or_else(|| {
-            let normals = self.mesh.normals.as_ref()?;
-            let [i0, i1, i2] = vertices();
-            (b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2]).try_normalize()
-        });
+        // none where the mesh has no normals or their blend is zero. (A `match`: through
+        // `Option::or_else`, left out of line, the normal came back through memory and its
+        // load waited for the stores, as in this function's comment.)
+        let shading = match (self.flat_ns, &self.mesh.normals) {
+            (Some(ns), _) => Some(ns),
+            (None, Some(normals)) => {
+                let [i0, i1, i2] = vertices();
+                (b[0] * normals[i0] + b[1] * normals[i1] + b[2] * normals[i2]).try_normalize()
+            }
+            (None, None) => None,
+        };
         let mut n = self.n;
         let ns = match shading {
             // The geometric normal follows the shading normal's side when one is given.
