@@ -27,9 +27,11 @@ if [ -z "${MC:-}" ]; then
     MC=target/release/mcrender
 fi
 
-run_mitsuba() { # variant
-    "$VENV/bin/python" "$SHARED/peers/mitsuba_render.py" --scene "$SHARED/scenes/cornell-box/mitsuba/scene_v3.xml" \
-        --res "$RES" --spp "$SPP" --max-depth 65 --variant "$1" --threads "$THREADS" --out "$OUT/mitsuba-$1.exr" 2>/dev/null | tail -n 1
+run_mitsuba() { # variant, image name, then optionally a script to run the peers script through
+    local variant="$1" name="$2"
+    shift 2
+    "$VENV/bin/python" "$@" "$SHARED/peers/mitsuba_render.py" --scene "$SHARED/scenes/cornell-box/mitsuba/scene_v3.xml" \
+        --res "$RES" --spp "$SPP" --max-depth 65 --variant "$variant" --threads "$THREADS" --out "$OUT/$name.exr" 2>/dev/null | tail -n 1
 }
 
 run_mcrender() { # name, then extra options
@@ -62,13 +64,11 @@ mc_rr_line="$(run_mcrender mc-independent-rr --sampler independent --rr mitsuba)
 mc_sobol_line="$(run_mcrender mc-sobol --sampler sobol)"
 mc_splat_line="$(run_mcrender mc-splat-rr --sampler independent --rr mitsuba --reconstruction splat)"
 mc_sobol_splat_line="$(run_mcrender mc-sobol-splat-rr --sampler sobol --rr mitsuba --reconstruction splat)"
-llvm_json="$(run_mitsuba llvm_ad_rgb || true)"
+llvm_json="$(run_mitsuba llvm_ad_rgb mitsuba-llvm_ad_rgb || true)"
 # The llvm variant held to AVX2 (8 lanes; bench/mitsuba_avx2.py): on a CPU with AVX-512 it
 # shows how much of its lead is the 16-lane kernels. The ratios stay over the native llvm row.
-llvm_avx2_json="$("$VENV/bin/python" bench/mitsuba_avx2.py "$SHARED/peers/mitsuba_render.py" \
-    --scene "$SHARED/scenes/cornell-box/mitsuba/scene_v3.xml" --res "$RES" --spp "$SPP" --max-depth 65 \
-    --variant llvm_ad_rgb --threads "$THREADS" --out "$OUT/mitsuba-llvm-avx2.exr" 2>/dev/null | tail -n 1 || true)"
-scalar_json="$(run_mitsuba scalar_rgb || true)"
+llvm_avx2_json="$(run_mitsuba llvm_ad_rgb mitsuba-llvm-avx2 bench/mitsuba_avx2.py || true)"
+scalar_json="$(run_mitsuba scalar_rgb mitsuba-scalar_rgb || true)"
 errors="$(for f in mc-independent mc-independent-rr mc-sobol mc-splat-rr mc-sobol-splat-rr mitsuba-llvm_ad_rgb mitsuba-scalar_rgb mitsuba-llvm-avx2; do rel_mse "$OUT/$f.exr"; done | tr '\n' ' ')"
 
 python3 - "$RES" "$SPP" "$errors" "$mc_line" "$mc_rr_line" "$mc_sobol_line" "$mc_splat_line" "$mc_sobol_splat_line" "$llvm_json" "$scalar_json" "$llvm_avx2_json" <<'PY'

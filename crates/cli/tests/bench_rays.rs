@@ -8,6 +8,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use common::{mcrender, stderr};
+use mcrender_core::accel::Isa;
 use mcrender_core::math::{Ray, Vec3};
 use mcrender_core::shape::{Triangle, TriangleMesh};
 
@@ -128,19 +129,13 @@ fn hits_agree_with_brute_force() {
         vec!["--packets"],
         vec!["--packets", "--isa", "portable"],
     ];
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
-        configs.push(vec!["--isa", "avx2"]);
-        configs.push(vec!["--packets", "--isa", "avx2"]);
-    } else {
-        eprintln!("NOT TESTED: --isa avx2 (this CPU has no AVX2 and FMA)");
-    }
-    #[cfg(target_arch = "x86_64")]
-    if mcrender_core::accel::Isa::Avx512.is_supported() {
-        configs.push(vec!["--isa", "avx512"]);
-        configs.push(vec!["--packets", "--isa", "avx512"]);
-    } else {
-        eprintln!("NOT TESTED: --isa avx512 (this CPU has no AVX-512 F and VL)");
+    for isa in [Isa::Avx2, Isa::Avx512] {
+        if isa.is_supported() {
+            configs.push(vec!["--isa", isa.name()]);
+            configs.push(vec!["--packets", "--isa", isa.name()]);
+        } else {
+            eprintln!("NOT TESTED: --isa {} (this CPU does not have it)", isa.name());
+        }
     }
     for config in &configs {
         let accel = config.join(" ");
